@@ -1,0 +1,37 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace clipblur {
+
+// A planar float image: named channels (R, G, B, A, Z, coverage, motion.x, motion.y, ...) over a
+// data window inside the full display window, so tile shards can be written and merged.
+struct Image {
+    int width = 0;    // display window
+    int height = 0;
+    int x0 = 0;       // data window origin and size
+    int y0 = 0;
+    int data_width = 0;
+    int data_height = 0;
+
+    struct Channel {
+        std::string name;
+        std::vector<float> values;  // data_width * data_height, row-major
+    };
+    std::vector<Channel> channels;
+
+    static Image make(int width, int height, const std::vector<std::string>& names);
+    Channel* find(const std::string& name);
+    const Channel* find(const std::string& name) const;
+};
+
+// Counters and timings of one render, written to the stats JSON; ordered so output is deterministic.
+struct RenderStats {
+    std::map<std::string, double> seconds;
+    std::map<std::string, long long> counts;
+    std::map<std::string, std::string> info;
+};
+
+}  // namespace clipblur

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace clipblur {
+
+enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
+enum class PathMethod { Exact, Euler, RK4 };
+
+struct Shutter {
+    double open = 0.0;   // offsets within the frame, 0 <= open <= close <= 1
+    double close = 1.0;
+};
+
+struct FrameRange {
+    int first = 0;
+    int last = 0;
+    double fps = 24.0;
+};
+
+struct RenderSettings {
+    Method method = Method::Clipped;
+    int samples = 16;          // stochastic: samples per pixel; accumulation: renders per frame
+    int subframes = 0;         // clipped: 0 means automatic (paper eq. 24)
+    int max_subframes = 256;
+    PathMethod path_method = PathMethod::Exact;
+    int ode_steps = 16;        // per subframe interval, Euler and RK4 only
+    int visibility_rays = 4;   // Embree candidate rays per pixel side (n x n per pixel)
+    bool shadows = false;
+    std::uint64_t seed = 0;
+    int tile_size = 32;
+};
+
+struct OutputSettings {
+    std::string path = "render.exr";
+    bool half = true;
+    bool png_preview = false;
+    bool aov_depth = false;
+    bool aov_coverage = false;
+    bool aov_motion = false;
+    std::string stats_path;    // empty: beside the image as <image>.stats.json
+};
+
+struct RenderJob {
+    int version = 1;
+    Scene scene;
+    Shutter shutter;
+    FrameRange frames;
+    RenderSettings render;
+    OutputSettings output;
+    std::string source_file;
+    std::string config_hash;   // hash of the resolved config, for EXR metadata
+};
+
+}  // namespace clipblur

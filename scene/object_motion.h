@@ -1,0 +1,28 @@
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace clipblur {
+
+// Object-to-world transform at one time, decomposed so that rotation follows its slerp arc.
+struct RigidTransform {
+    glm::dvec3 translate{0.0};
+    glm::dquat rotate{1.0, 0.0, 0.0, 0.0};
+    glm::dvec3 scale{1.0};
+
+    glm::dvec3 apply(const glm::dvec3& p) const { return translate + rotate * (scale * p); }
+};
+
+// Translation and scale linear, rotation slerped between the keys that bracket t; held outside them.
+RigidTransform evalTransform(const std::vector<TransformKey>& keys, double t);
+
+// World position of vertex `index` of `object` at absolute time t: deformation keys interpolated
+// linearly in object space, then the transform at t applied.
+glm::dvec3 evalVertex(const Object& object, std::uint32_t index, double t);
+
+// True when the object has no motion inside [t0, t1] (no keys differ there).
+bool isStatic(const Object& object, double t0, double t1);
+
+}  // namespace clipblur

@@ -1,0 +1,95 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "scene/error.h"
+
+namespace clipblur {
+
+// Times are absolute, in frames: frame k's shutter spans [k + open, k + close].
+
+// One camera key as the paper's Table 1 gives it: position, view direction, up direction.
+struct CameraKey {
+    double time = 0.0;
+    glm::dvec3 position{0.0};
+    glm::dvec3 view{0.0, 0.0, 1.0};
+    glm::dvec3 up{0.0, 1.0, 0.0};
+};
+
+struct Camera {
+    double vfov_degrees = 40.0;
+    std::vector<CameraKey> keys;  // sorted by time; one key is a still camera
+};
+
+struct Film {
+    int width = 640;
+    int height = 360;
+    glm::dvec3 background{0.0};
+};
+
+// Decomposed object-to-world transform key; rotation is interpolated by slerp, not by lerping matrices.
+struct TransformKey {
+    double time = 0.0;
+    glm::dvec3 translate{0.0};
+    glm::dquat rotate{1.0, 0.0, 0.0, 0.0};
+    glm::dvec3 scale{1.0};
+};
+
+struct Mesh {
+    std::vector<glm::dvec3> positions;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+// Deformation blur: the same topology at another time (object space).
+struct DeformationKey {
+    double time = 0.0;
+    std::vector<glm::dvec3> positions;
+};
+
+struct Texture {
+    enum class Kind { None, Checker, Stripe };
+    Kind kind = Kind::None;
+    glm::dvec3 color2{0.1};
+    double scale = 1.0;  // period length in object-space units
+};
+
+struct Material {
+    glm::dvec3 base_color{0.8};
+    Texture texture;
+    bool two_sided = true;
+};
+
+struct Light {
+    enum class Kind { Directional, Point };
+    Kind kind = Kind::Directional;
+    glm::dvec3 color{1.0};
+    double intensity = 1.0;
+    glm::dvec3 direction{0.0, 0.0, 1.0};  // directional: the direction light travels
+    glm::dvec3 position{0.0};             // point
+};
+
+struct Object {
+    std::string name;
+    Mesh mesh;                                 // rest positions, also the key at every time without deformation
+    std::vector<DeformationKey> deformation;   // sorted by time; empty means rigid
+    std::vector<TransformKey> transform;       // sorted by time; empty means identity
+    int material = 0;
+    FileLoc loc;
+};
+
+struct Scene {
+    Camera camera;
+    Film film;
+    std::vector<Object> objects;
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    glm::dvec3 ambient{0.1};
+};
+
+}  // namespace clipblur
