@@ -1,0 +1,16 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "scene/job.h"
+
+namespace clipblur {
+
+// Reads a render job (YAML or JSON, one schema), applies `overrides` ("key.path=value", as given to
+// --set) before validation, builds the scene (primitives expanded to meshes, OBJ files loaded) and
+// validates it. Throws clipblur::Error with file:line:col on any problem.
+RenderJob loadJob(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+
+}  // namespace clipblur

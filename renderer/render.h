@@ -1,0 +1,24 @@
+#pragma once
+
+#include <atomic>
+#include <functional>
+
+#include "renderer/image.h"
+#include "scene/job.h"
+
+namespace clipblur {
+
+struct RenderCallbacks {
+    std::function<void(long long done, long long total)> progress;  // called from worker threads, serialised
+    const std::atomic<bool>* cancel = nullptr;                      // set by a signal handler to stop early
+};
+
+struct RenderResult {
+    Image image;  // R, G, B, A and the AOVs the job asks for
+    RenderStats stats;
+};
+
+// Renders frame `frame` of the job with the job's method. Throws Error(ExitCode::Interrupted) when cancelled.
+RenderResult renderFrame(const RenderJob& job, int frame, const RenderCallbacks& callbacks = {});
+
+}  // namespace clipblur
