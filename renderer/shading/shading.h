@@ -1,0 +1,67 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace clipblur {
+
+class EmbreeScene;
+
+// A point on a triangle at one time: the shading input shared by the stochastic renderer (Embree hits)
+// and the clipped renderer (fragment vertices). Barycentrics follow Embree: p = (1-u-v) v0 + u v1 + v v2.
+struct SurfacePoint {
+    int object = 0;
+    std::uint32_t triangle = 0;
+    double u = 0.0;
+    double v = 0.0;
+    double time = 0.0;  // absolute, in frames
+};
+
+struct SurfaceGeometry {
+    glm::dvec3 position{0.0};         // world, at the point's time
+    glm::dvec3 normal{0.0};           // unit, (v1-v0) x (v2-v0) at that time; zero for degenerate triangles
+    glm::dvec3 object_position{0.0};  // on the rest mesh (Mesh::positions): textures stick to the surface
+};
+
+// Lambert shading: albedo * (ambient + sum over lights of intensity * color * max(0, n.l)), point lights
+// divided by the squared distance. Albedo is the material's base colour or its checker/stripe texture
+// evaluated at the rest-mesh position, so the pattern moves (and deforms) with the object.
+//
+// Faces: the front side is the one (v1-v0) x (v2-v0) points to. Two-sided materials flip the normal
+// toward the eye. One-sided materials shade back faces black rather than culling them: a back face
+// still occludes what is behind it, so culling would show objects through a closed mesh's far side
+// whenever its front is clipped or missing, and black makes wrong winding obvious.
+class Shader {
+public:
+    // Precomputes world positions of objects that do not move during [t0, t1]. With `shadows` set,
+    // each light is tested for occlusion with a shadow ray at the point's time.
+    Shader(const Scene& scene, double t0, double t1, const EmbreeScene* shadows = nullptr);
+
+    SurfaceGeometry geometry(const SurfacePoint& point) const;
+    // `eye` is the camera position at point.time; `shadow_rays` (optional) is incremented per ray cast.
+    glm::dvec3 shade(const SurfacePoint& point, const glm::dvec3& eye, long long* shadow_rays = nullptr) const;
+    glm::dvec3 shade(const SurfacePoint& point, const SurfaceGeometry& surface, const glm::dvec3& eye,
+                     long long* shadow_rays = nullptr) const;
+
+    const Scene& scene() const { return scene_; }
+
+private:
+    const Scene& scene_;
+    const EmbreeScene* shadows_;
+    std::vector<std::vector<glm::dvec3>> static_world_;  // per object; empty when the object moves
+};
+
+// Base colour or texture at an object-space point (no lighting).
+glm::dvec3 albedo(const Material& material, const glm::dvec3& object_position);
+
+// Light arriving at `position` with unit normal `normal` from one light (no shadowing): intensity *
+// color * max(0, n.l), over distance^2 for point lights. `to_light` receives the unnormalised
+// direction to the light (point) or the unit direction against its travel (directional).
+glm::dvec3 lightIrradiance(const Light& light, const glm::dvec3& position, const glm::dvec3& normal,
+                           glm::dvec3* to_light = nullptr);
+
+}  // namespace clipblur

@@ -1,0 +1,184 @@
+#include "renderer/stochastic/stochastic_renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "renderer/sampling/pixel_samples.h"
+#include "renderer/shading/shading.h"
+#include "renderer/tiles.h"
+#include "renderer/visibility/embree_scene.h"
+#include "scene/camera.h"
+#include "scene/error.h"
+
+namespace clipblur {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::vector<std::string> channelNames(const OutputSettings& out) {
+    std::vector<std::string> names{"R", "G", "B", "A"};
+    if (out.aov_depth) names.push_back("Z");
+    if (out.aov_coverage) names.push_back("coverage");
+    if (out.aov_motion) {
+        names.push_back("motion.x");
+        names.push_back("motion.y");
+    }
+    return names;
+}
+
+struct TileCounters {
+    long long primary_rays = 0;
+    long long shadow_rays = 0;
+};
+
+}  // namespace
+
+RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
+    const auto start = Clock::now();
+    const Scene& scene = job.scene;
+    const int width = scene.film.width;
+    const int height = scene.film.height;
+    const int samples = job.render.samples;
+    if (samples < 1) throw Error(ExitCode::Render, "stochastic rendering needs at least 1 sample per pixel");
+    if (scene.camera.keys.empty()) throw Error(ExitCode::Render, "the scene has no camera key");
+    const double t0 = frame + job.shutter.open;
+    const double t1 = frame + job.shutter.close;
+
+    EmbreeDevice device;
+    const EmbreeScene visibility(device, scene, t0, t1);
+    const Shader shader(scene, t0, t1, job.render.shadows ? &visibility : nullptr);
+    const double build_seconds = secondsSince(start);
+
+    const Projection projection(width, height, scene.camera.vfov_degrees);
+    const CameraFrame camera_open = evalCamera(scene.camera, t0);
+    const CameraFrame camera_close = evalCamera(scene.camera, t1);
+    const TileGrid grid(width, height, job.render.tile_size);
+    const OutputSettings& out = job.output;
+
+    RenderResult result;
+    result.image = Image::make(width, height, channelNames(out));
+    Image& image = result.image;
+    float* rgba[4];
+    for (int c = 0; c < 4; ++c) rgba[c] = image.channels[static_cast<std::size_t>(c)].values.data();
+    float* z_out = out.aov_depth ? image.find("Z")->values.data() : nullptr;
+    float* cov_out = out.aov_coverage ? image.find("coverage")->values.data() : nullptr;
+    float* mx_out = out.aov_motion ? image.find("motion.x")->values.data() : nullptr;
+    float* my_out = out.aov_motion ? image.find("motion.y")->values.data() : nullptr;
+
+    const std::uint64_t frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
+    const long long total_tiles = grid.count();
+    std::mutex progress_mutex;
+    long long tiles_done = 0;
+    TileCounters totals;
+    bool cancelled = false;
+    const auto render_start = Clock::now();
+
+    tbb::parallel_for(tbb::blocked_range<int>(0, grid.count(), 1), [&](const tbb::blocked_range<int>& range) {
+        std::vector<SpaceTimeSample> pixel_samples;
+        std::vector<std::uint32_t> scratch;
+        TileCounters counters;
+        for (int task = range.begin(); task != range.end(); ++task) {
+            if (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed)) {
+                std::lock_guard lock(progress_mutex);
+                cancelled = true;
+                continue;
+            }
+            const Tile tile = grid.tile(task);
+            for (int y = tile.y0; y < tile.y1; ++y) {
+                for (int x = tile.x0; x < tile.x1; ++x) {
+                    const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
+                    generatePixelSamples(HashRng::forKey(job.render.seed, frame_key, pixel), samples, pixel_samples,
+                                         scratch);
+                    glm::dvec3 colour(0.0);
+                    double covered = 0.0;
+                    double depth_sum = 0.0;
+                    glm::dvec2 motion_sum(0.0);
+                    double motion_count = 0.0;
+                    for (const SpaceTimeSample& s : pixel_samples) {
+                        const double t = t0 + (t1 - t0) * s.time;
+                        const CameraFrame camera = evalCamera(scene.camera, t);
+                        const glm::dvec2 p = projection.toImagePlane(glm::dvec2(x + s.x, y + s.y));
+                        // Unnormalised, with e3.dir = 1: the hit distance is the camera depth.
+                        const glm::dvec3 dir = camera.e3 + p.x * camera.e1 + p.y * camera.e2;
+                        const EmbreeHit hit = visibility.intersect(camera.position, dir, t);
+                        ++counters.primary_rays;
+                        if (!hit.hit) {
+                            colour += scene.film.background;
+                            continue;
+                        }
+                        const SurfacePoint point{hit.object, hit.triangle, hit.u, hit.v, t};
+                        colour += shader.shade(point, camera.position, &counters.shadow_rays);
+                        covered += 1.0;
+                        depth_sum += hit.distance;
+                        if (mx_out) {
+                            SurfacePoint at = point;
+                            at.time = t0;
+                            const ImagePoint a = projectToImagePlane(camera_open, shader.geometry(at).position);
+                            at.time = t1;
+                            const ImagePoint b = projectToImagePlane(camera_close, shader.geometry(at).position);
+                            if (a.depth > 0.0 && b.depth > 0.0) {
+                                motion_sum += projection.toRaster(b.p) - projection.toRaster(a.p);
+                                motion_count += 1.0;
+                            }
+                        }
+                    }
+                    const double inv = 1.0 / samples;
+                    rgba[0][pixel] = static_cast<float>(colour.r * inv);
+                    rgba[1][pixel] = static_cast<float>(colour.g * inv);
+                    rgba[2][pixel] = static_cast<float>(colour.b * inv);
+                    rgba[3][pixel] = static_cast<float>(covered * inv);
+                    if (cov_out) cov_out[pixel] = static_cast<float>(covered * inv);
+                    if (z_out)
+                        z_out[pixel] = covered > 0.0 ? static_cast<float>(depth_sum / covered)
+                                                     : std::numeric_limits<float>::infinity();
+                    if (mx_out) {
+                        const glm::dvec2 m = motion_count > 0.0 ? motion_sum / motion_count : glm::dvec2(0.0);
+                        mx_out[pixel] = static_cast<float>(m.x);
+                        my_out[pixel] = static_cast<float>(m.y);
+                    }
+                }
+            }
+            std::lock_guard lock(progress_mutex);
+            ++tiles_done;
+            if (callbacks.progress) callbacks.progress(tiles_done, total_tiles);
+        }
+        std::lock_guard lock(progress_mutex);
+        totals.primary_rays += counters.primary_rays;
+        totals.shadow_rays += counters.shadow_rays;
+    });
+    if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
+
+    RenderStats& stats = result.stats;
+    stats.info["method"] = "stochastic";
+    stats.seconds["scene_build"] = build_seconds;
+    stats.seconds["render"] = secondsSince(render_start);
+    stats.seconds["total"] = secondsSince(start);
+    const EmbreeSceneStats& vs = visibility.stats();
+    stats.counts["frame"] = frame;
+    stats.counts["samples_per_pixel"] = samples;
+    stats.counts["samples"] = static_cast<long long>(width) * height * samples;
+    stats.counts["primary_rays"] = totals.primary_rays;
+    stats.counts["shadow_rays"] = totals.shadow_rays;
+    stats.counts["rays"] = totals.primary_rays + totals.shadow_rays;
+    stats.counts["tiles"] = total_tiles;
+    stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
+    stats.counts["triangles"] = vs.triangles;
+    stats.counts["dropped_triangles"] = vs.dropped_triangles;
+    stats.counts["moving_objects"] = vs.moving_objects;
+    stats.counts["capped_time_step_objects"] = vs.capped_objects;
+    stats.counts["max_time_steps"] = vs.max_time_steps;
+    stats.counts["vertex_evaluations"] = vs.vertex_evaluations;
+    return result;
+}
+
+}  // namespace clipblur

@@ -1,0 +1,258 @@
+#include "renderer/visibility/embree_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "scene/camera.h"
+#include "scene/error.h"
+#include "scene/object_motion.h"
+
+namespace clipblur {
+
+namespace {
+
+// Embree's commit skips primitives whose vertices leave this range (or are NaN/Inf).
+constexpr float kEmbreeCoordinateLimit = 1.844e18f;
+
+// Owns a geometry until it is attached and committed.
+class GeometryHandle {
+public:
+    GeometryHandle(RTCDevice device, RTCGeometryType type) : geometry_(rtcNewGeometry(device, type)) {}
+    ~GeometryHandle() {
+        if (geometry_) rtcReleaseGeometry(geometry_);
+    }
+    GeometryHandle(const GeometryHandle&) = delete;
+    GeometryHandle& operator=(const GeometryHandle&) = delete;
+    RTCGeometry get() const { return geometry_; }
+
+private:
+    RTCGeometry geometry_;
+};
+
+// World positions of every vertex at time t, exactly as evalVertex gives them; the rigid case evaluates
+// the transform once instead of per vertex.
+void positionsAt(const Object& object, double t, std::vector<glm::dvec3>& out) {
+    const std::size_t n = object.mesh.positions.size();
+    out.resize(n);
+    if (object.deformation.empty()) {
+        const RigidTransform x = evalTransform(object.transform, t);
+        for (std::size_t i = 0; i < n; ++i) out[i] = x.apply(object.mesh.positions[i]);
+    } else {
+        for (std::size_t i = 0; i < n; ++i) out[i] = evalVertex(object, static_cast<std::uint32_t>(i), t);
+    }
+}
+
+// Largest image-plane deviation, in pixels, between the true positions at a segment's midpoint time and
+// the chord midpoints. With d = x - camera and depth z = e3.d, the image point is p = (e1.d, e2.d)/z and a
+// displacement D moves it by |dp| <= |D| (1 + |p|) / z. Vertices behind the camera have no image point
+// and are skipped.
+double chordErrorPixels(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b,
+                        const std::vector<glm::dvec3>& mid, const CameraFrame& camera, double pixels_per_unit) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < mid.size(); ++i) {
+        const glm::dvec3 d = mid[i] - camera.position;
+        const double depth = glm::dot(camera.e3, d);
+        if (!(depth > 0.0)) continue;
+        const glm::dvec2 p(glm::dot(camera.e1, d) / depth, glm::dot(camera.e2, d) / depth);
+        const double deviation = glm::length(mid[i] - 0.5 * (a[i] + b[i]));
+        const double px = deviation * (1.0 + glm::length(p)) / depth * pixels_per_unit;
+        if (!(px <= worst)) worst = px;  // NaN propagates as "too large"
+    }
+    return worst;
+}
+
+bool validCoordinate(float c) { return std::isfinite(c) && std::fabs(c) < kEmbreeCoordinateLimit; }
+
+void checkMesh(const Object& object) {
+    const std::size_t n = object.mesh.positions.size();
+    for (const auto& tri : object.mesh.triangles)
+        for (std::uint32_t index : tri)
+            if (index >= n)
+                throwSceneError(object.loc, "object '" + object.name + "' has vertex index " + std::to_string(index) +
+                                                " but only " + std::to_string(n) + " vertices");
+    for (const auto& key : object.deformation)
+        if (key.positions.size() != n)
+            throwSceneError(object.loc, "object '" + object.name + "' has a deformation key with " +
+                                            std::to_string(key.positions.size()) + " vertices instead of " +
+                                            std::to_string(n));
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1) : t0_(t0), t1_(t1) {
+    if (!(t1 >= t0)) throw Error(ExitCode::Render, "shutter window must satisfy t0 <= t1");
+    scene_ = rtcNewScene(device.get());
+    device.check("creating a scene");
+
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const double ppu = projection.pixelsPerUnit();
+    steps_.assign(scene.objects.size(), 0);
+
+    std::vector<std::vector<glm::dvec3>> steps;  // positions per time step
+    std::vector<std::vector<glm::dvec3>> mids;
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        if (object.mesh.triangles.empty()) continue;
+        checkMesh(object);
+        const std::size_t nv = object.mesh.positions.size();
+
+        steps.assign(1, {});
+        positionsAt(object, t0, steps[0]);
+        stats_.vertex_evaluations += static_cast<long long>(nv);
+        if (t1 > t0 && !isStatic(object, t0, t1)) {
+            ++stats_.moving_objects;
+            steps.resize(2);
+            positionsAt(object, t1, steps[1]);
+            stats_.vertex_evaluations += static_cast<long long>(nv);
+            while (true) {
+                const std::size_t segments = steps.size() - 1;
+                mids.resize(segments);
+                double worst = 0.0;
+                for (std::size_t s = 0; s < segments; ++s) {
+                    const double tm = t0 + (t1 - t0) * (static_cast<double>(s) + 0.5) / static_cast<double>(segments);
+                    positionsAt(object, tm, mids[s]);
+                    stats_.vertex_evaluations += static_cast<long long>(nv);
+                    worst = std::max(worst, chordErrorPixels(steps[s], steps[s + 1], mids[s],
+                                                             evalCamera(scene.camera, tm), ppu));
+                }
+                if (worst <= kMaxChordErrorPixels) break;
+                if (2 * segments + 1 > RTC_MAX_TIME_STEP_COUNT) {
+                    ++stats_.capped_objects;
+                    break;
+                }
+                // Interleave: the midpoints become steps, halving every segment.
+                std::vector<std::vector<glm::dvec3>> refined;
+                refined.reserve(2 * segments + 1);
+                for (std::size_t s = 0; s < segments; ++s) {
+                    refined.push_back(std::move(steps[s]));
+                    refined.push_back(std::move(mids[s]));
+                }
+                refined.push_back(std::move(steps.back()));
+                steps = std::move(refined);
+                mids.clear();
+            }
+        }
+
+        const auto step_count = static_cast<unsigned>(steps.size());
+        GeometryHandle geometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        if (step_count > 1) rtcSetGeometryTimeStepCount(geometry.get(), step_count);
+        std::vector<bool> bad_vertex(nv, false);
+        for (unsigned s = 0; s < step_count; ++s) {
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, s,
+                                                                  RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+            device.check("allocating vertex buffers for object '" + object.name + "'");
+            for (std::size_t i = 0; i < nv; ++i) {
+                for (int c = 0; c < 3; ++c) {
+                    v[3 * i + c] = static_cast<float>(steps[s][i][c]);
+                    if (!validCoordinate(v[3 * i + c])) bad_vertex[i] = true;
+                }
+            }
+        }
+        auto* idx = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+            geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t),
+            object.mesh.triangles.size()));
+        device.check("allocating the index buffer for object '" + object.name + "'");
+        for (std::size_t t = 0; t < object.mesh.triangles.size(); ++t) {
+            const auto& tri = object.mesh.triangles[t];
+            for (int c = 0; c < 3; ++c) idx[3 * t + c] = tri[c];
+            if (bad_vertex[tri[0]] || bad_vertex[tri[1]] || bad_vertex[tri[2]]) ++stats_.dropped_triangles;
+        }
+        rtcCommitGeometry(geometry.get());
+        const unsigned id = rtcAttachGeometry(scene_, geometry.get());
+        device.check("adding object '" + object.name + "'");
+        if (object_of_geometry_.size() <= id) object_of_geometry_.resize(id + 1, -1);
+        object_of_geometry_[id] = static_cast<int>(o);
+        steps_[o] = static_cast<int>(step_count);
+        stats_.triangles += static_cast<long long>(object.mesh.triangles.size());
+        stats_.max_time_steps = std::max(stats_.max_time_steps, static_cast<int>(step_count));
+    }
+    rtcCommitScene(scene_);
+    device.check("building the acceleration structure");
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (scene_) rtcReleaseScene(scene_);
+}
+
+EmbreeScene::EmbreeScene(EmbreeScene&& other) noexcept
+    : scene_(std::exchange(other.scene_, nullptr)),
+      t0_(other.t0_),
+      t1_(other.t1_),
+      object_of_geometry_(std::move(other.object_of_geometry_)),
+      steps_(std::move(other.steps_)),
+      stats_(other.stats_) {}
+
+EmbreeScene& EmbreeScene::operator=(EmbreeScene&& other) noexcept {
+    if (this != &other) {
+        if (scene_) rtcReleaseScene(scene_);
+        scene_ = std::exchange(other.scene_, nullptr);
+        t0_ = other.t0_;
+        t1_ = other.t1_;
+        object_of_geometry_ = std::move(other.object_of_geometry_);
+        steps_ = std::move(other.steps_);
+        stats_ = other.stats_;
+    }
+    return *this;
+}
+
+double EmbreeScene::embreeTime(double t) const {
+    if (!(t1_ > t0_)) return 0.0;
+    return std::clamp((t - t0_) / (t1_ - t0_), 0.0, 1.0);
+}
+
+EmbreeHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = static_cast<float>(origin.x);
+    rh.ray.org_y = static_cast<float>(origin.y);
+    rh.ray.org_z = static_cast<float>(origin.z);
+    rh.ray.dir_x = static_cast<float>(direction.x);
+    rh.ray.dir_y = static_cast<float>(direction.y);
+    rh.ray.dir_z = static_cast<float>(direction.z);
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.time = static_cast<float>(embreeTime(t));
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    EmbreeHit hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.hit = true;
+    hit.object = object_of_geometry_[rh.hit.geomID];
+    hit.triangle = rh.hit.primID;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    hit.distance = rh.ray.tfar;
+    return hit;
+}
+
+bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double max_distance,
+                           double t) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray;
+    ray.org_x = static_cast<float>(origin.x);
+    ray.org_y = static_cast<float>(origin.y);
+    ray.org_z = static_cast<float>(origin.z);
+    ray.dir_x = static_cast<float>(direction.x);
+    ray.dir_y = static_cast<float>(direction.y);
+    ray.dir_z = static_cast<float>(direction.z);
+    ray.tnear = 0.0f;
+    ray.tfar = static_cast<float>(max_distance);
+    ray.time = static_cast<float>(embreeTime(t));
+    ray.mask = 0xffffffffu;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene_, &context, &ray);
+    return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace clipblur
