@@ -1,0 +1,118 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "renderer/visibility/embree_scene.h"
+#include "scene/camera.h"
+#include "scene/error.h"
+#include "scene/object_motion.h"
+#include "tests/renderer/test_scenes.h"
+
+namespace clipblur {
+
+TEST(EmbreeDevice, ErrorCallbackBecomesAClipblurError) {
+    const EmbreeDevice device;
+    RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryTimeStepCount(geometry, 1000);  // above RTC_MAX_TIME_STEP_COUNT: invalid argument
+    rtcReleaseGeometry(geometry);
+    try {
+        device.check("testing");
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Render);
+        EXPECT_NE(e.message().find("invalid argument"), std::string::npos) << e.message();
+    }
+    EXPECT_NO_THROW(device.check("after the error was reported"));
+}
+
+TEST(EmbreeScene, StillSceneHitsTheQuadAtItsDepth) {
+    RenderJob job = test::squareFilmJob();
+    job.scene.objects.push_back(test::rasterQuad(10, 10, 20, 20, 5.0));
+    const EmbreeDevice device;
+    const EmbreeScene scene(device, job.scene, 0.0, 0.0);
+    EXPECT_EQ(scene.timeSteps(0), 1);
+    const EmbreeHit hit = scene.intersect(glm::dvec3(0.0), test::worldAtRaster(15, 15, 1.0), 0.0);
+    ASSERT_TRUE(hit.hit);
+    EXPECT_EQ(hit.object, 0);
+    EXPECT_NEAR(hit.distance, 5.0, 5.0 * 1e-6);  // float ray parameter
+    EXPECT_FALSE(scene.intersect(glm::dvec3(0.0), test::worldAtRaster(25, 15, 1.0), 0.0).hit);
+}
+
+TEST(EmbreeScene, TranslationNeedsTwoStepsAndRotationMore) {
+    RenderJob job = test::squareFilmJob(256);
+    Object slide = test::rasterQuad(100, 100, 150, 150, 5.0, 256);
+    slide.transform = {TransformKey{0.0, glm::dvec3(0.0)}, TransformKey{1.0, glm::dvec3(0.3, 0.0, 0.0)}};
+    job.scene.objects.push_back(slide);
+    // A quad of half-size 1 centred on the view axis at depth 5, spun 90 degrees about the view axis.
+    Object spin;
+    spin.name = "spin";
+    spin.mesh.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    spin.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    spin.transform = {TransformKey{0.0, glm::dvec3(0, 0, 5)},
+                      TransformKey{1.0, glm::dvec3(0, 0, 5), glm::angleAxis(M_PI / 2, glm::dvec3(0, 0, 1))}};
+    job.scene.objects.push_back(spin);
+    const EmbreeDevice device;
+    const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+    EXPECT_EQ(scene.timeSteps(0), 2);
+    // Corner radius r = sqrt 2 at depth 5 with 128 px per unit; the sagitta of a 90/(n-1) degree chord is
+    // r (1 - cos(theta/2)), times (1 + r/5) / 5 * 128 in pixels: 13.6 px (n = 2), 3.5 (3), 0.89 (5),
+    // 0.22 (9), 0.056 (17). The first count below 0.1 px in the 2, 3, 5, 9, 17 sequence is 17.
+    EXPECT_EQ(scene.timeSteps(1), 17);
+    EXPECT_EQ(scene.stats().moving_objects, 2);
+    EXPECT_EQ(scene.stats().dropped_triangles, 0);
+}
+
+TEST(EmbreeScene, RotatingQuadIsHitWhereTheExactMotionPutsIt) {
+    RenderJob job = test::squareFilmJob(256);
+    Object spin;
+    spin.name = "spin";
+    spin.mesh.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    spin.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    spin.transform = {TransformKey{0.0, glm::dvec3(0, 0, 5)},
+                      TransformKey{1.0, glm::dvec3(0, 0, 5), glm::angleAxis(M_PI / 2, glm::dvec3(0, 0, 1))}};
+    job.scene.objects.push_back(spin);
+    const EmbreeDevice device;
+    const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+    // Aim at a point just inside corner 2 of the exactly rotated quad: 0.98 of the way from the centre
+    // is 0.028 world units (0.7 px) inside, more than the 0.1 px chord bound, so it must be hit.
+    for (int i = 0; i <= 20; ++i) {
+        const double t = i / 20.0;
+        const glm::dvec3 corner = evalVertex(spin, 2, t);
+        const glm::dvec3 target = glm::dvec3(0, 0, 5) + 0.98 * (corner - glm::dvec3(0, 0, 5));
+        const EmbreeHit hit = scene.intersect(glm::dvec3(0.0), target, t);
+        EXPECT_TRUE(hit.hit) << "t = " << t;
+        // And just outside the corner (1.02) there is nothing.
+        const glm::dvec3 outside = glm::dvec3(0, 0, 5) + 1.02 * (corner - glm::dvec3(0, 0, 5));
+        EXPECT_FALSE(scene.intersect(glm::dvec3(0.0), outside, t).hit) << "t = " << t;
+    }
+}
+
+TEST(EmbreeScene, CountsTrianglesEmbreeWouldDrop) {
+    RenderJob job = test::squareFilmJob();
+    Object quad = test::rasterQuad(10, 10, 20, 20, 5.0);
+    quad.mesh.positions.push_back({1e30, 0, 5});  // beyond Embree's coordinate range
+    quad.mesh.positions.push_back({0, NAN, 5});
+    quad.mesh.triangles.push_back({0, 1, 4});
+    quad.mesh.triangles.push_back({0, 5, 1});
+    job.scene.objects.push_back(quad);
+    const EmbreeDevice device;
+    const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+    EXPECT_EQ(scene.stats().triangles, 4);
+    EXPECT_EQ(scene.stats().dropped_triangles, 2);
+}
+
+TEST(EmbreeScene, BadIndexIsASceneError) {
+    RenderJob job = test::squareFilmJob();
+    Object quad = test::rasterQuad(10, 10, 20, 20, 5.0);
+    quad.mesh.triangles.push_back({0, 1, 9});
+    job.scene.objects.push_back(quad);
+    const EmbreeDevice device;
+    try {
+        EmbreeScene scene(device, job.scene, 0.0, 1.0);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Scene);
+    }
+}
+
+}  // namespace clipblur
