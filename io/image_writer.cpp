@@ -1,0 +1,110 @@
+#include "io/image_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "clipblur/version.h"
+#include "io/atomic_file.h"
+#include "scene/error.h"
+
+namespace clipblur {
+
+namespace {
+
+void checkImage(const Image& image) {
+    const std::size_t n = static_cast<std::size_t>(image.data_width) * static_cast<std::size_t>(image.data_height);
+    if (image.channels.empty()) throw Error(ExitCode::Output, "image has no channels");
+    for (const auto& c : image.channels)
+        if (c.values.size() != n)
+            throw Error(ExitCode::Output, "channel '" + c.name + "' has " + std::to_string(c.values.size()) +
+                                              " values for a " + std::to_string(image.data_width) + "x" +
+                                              std::to_string(image.data_height) + " data window");
+}
+
+void writeWith(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const void* pixels,
+               OIIO::TypeDesc pixel_type) {
+    auto out = OIIO::ImageOutput::create(file.string());
+    if (!out) throw Error(ExitCode::Output, "cannot create a writer for " + file.string() + ": " + OIIO::geterror());
+    if (!out->open(file.string(), spec) || !out->write_image(pixel_type, pixels) || !out->close())
+        throw Error(ExitCode::Output, "cannot write " + file.string() + ": " + out->geterror());
+}
+
+}  // namespace
+
+void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata, bool half) {
+    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+        // Checked inside the atomic write so a bad image can never replace a good file.
+        checkImage(image);
+        const int nc = static_cast<int>(image.channels.size());
+        OIIO::ImageSpec spec(image.data_width, image.data_height, nc, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+        spec.x = image.x0;
+        spec.y = image.y0;
+        spec.full_x = 0;
+        spec.full_y = 0;
+        spec.full_width = image.width;
+        spec.full_height = image.height;
+        spec.channelnames.clear();
+        spec.alpha_channel = -1;
+        spec.z_channel = -1;
+        for (int c = 0; c < nc; ++c) {
+            const std::string& name = image.channels[static_cast<std::size_t>(c)].name;
+            spec.channelnames.push_back(name);
+            if (name == "A") spec.alpha_channel = c;
+            if (name == "Z") spec.z_channel = c;
+        }
+        spec.attribute("compression", "zip");
+        spec.attribute("clipblur:version", kVersion);
+        spec.attribute("clipblur:git", kGitHash);
+        spec.attribute("clipblur:method", metadata.method);
+        if (metadata.samples >= 0) spec.attribute("clipblur:samples", metadata.samples);
+        if (metadata.subframes >= 0) spec.attribute("clipblur:subframes", metadata.subframes);
+        // 64-bit seeds do not fit an int attribute; a decimal string keeps them exact.
+        spec.attribute("clipblur:seed", std::to_string(metadata.seed));
+        spec.attribute("clipblur:configHash", metadata.config_hash);
+        spec.attribute("clipblur:renderSeconds", static_cast<float>(metadata.render_seconds));
+
+        const std::size_t n = static_cast<std::size_t>(image.data_width) * image.data_height;
+        std::vector<float> interleaved(n * static_cast<std::size_t>(nc));
+        for (int c = 0; c < nc; ++c) {
+            const auto& values = image.channels[static_cast<std::size_t>(c)].values;
+            for (std::size_t i = 0; i < n; ++i) interleaved[i * nc + static_cast<std::size_t>(c)] = values[i];
+        }
+        writeWith(temporary, spec, interleaved.data(), OIIO::TypeDesc::FLOAT);
+    });
+}
+
+std::uint8_t encodeSrgb8(float linear) {
+    if (std::isnan(linear)) return 0;
+    const double v = std::clamp(static_cast<double>(linear), 0.0, 1.0);
+    const double e = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+    return static_cast<std::uint8_t>(std::lround(e * 255.0));
+}
+
+void writePngPreview(const std::filesystem::path& path, const Image& image) {
+    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+        checkImage(image);
+        const Image::Channel* rgb[3] = {image.find("R"), image.find("G"), image.find("B")};
+        for (const auto* c : rgb)
+            if (!c) throw Error(ExitCode::Output, "PNG preview needs R, G and B channels");
+        std::vector<std::uint8_t> pixels(static_cast<std::size_t>(image.width) * image.height * 3, 0);
+        for (int y = 0; y < image.data_height; ++y) {
+            const int fy = y + image.y0;
+            if (fy < 0 || fy >= image.height) continue;
+            for (int x = 0; x < image.data_width; ++x) {
+                const int fx = x + image.x0;
+                if (fx < 0 || fx >= image.width) continue;
+                const std::size_t src = static_cast<std::size_t>(y) * image.data_width + x;
+                const std::size_t dst = (static_cast<std::size_t>(fy) * image.width + fx) * 3;
+                for (int c = 0; c < 3; ++c) pixels[dst + c] = encodeSrgb8(rgb[c]->values[src]);
+            }
+        }
+        OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", "sRGB");
+        writeWith(temporary, spec, pixels.data(), OIIO::TypeDesc::UINT8);
+    });
+}
+
+}  // namespace clipblur

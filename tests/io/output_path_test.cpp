@@ -1,0 +1,53 @@
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/output_path.h"
+#include "io/stats_writer.h"
+#include "scene/error.h"
+
+namespace clipblur {
+
+TEST(OutputPath, HashRunsBecomeZeroPaddedFrames) {
+    EXPECT_EQ(framePath("shot.####.exr", 12), "shot.0012.exr");
+    EXPECT_EQ(framePath("shot.#.exr", 123), "shot.123.exr");
+    EXPECT_EQ(framePath("a##/b####.exr", 7), "a07/b0007.exr");
+    EXPECT_EQ(framePath("f.###.exr", -4), "f.-004.exr");
+    EXPECT_EQ(framePath("plain.exr", 3), "plain.exr");
+}
+
+TEST(OutputPath, SeveralFramesNeedAPattern) {
+    EXPECT_EQ(outputPathForFrame("one.exr", 5, 5, 5), "one.exr");
+    EXPECT_EQ(outputPathForFrame("s.##.exr", 6, 5, 9), "s.06.exr");
+    try {
+        outputPathForFrame("one.exr", 5, 5, 9);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Usage);
+    }
+}
+
+TEST(OutputPath, StatsSitBesideTheImage) {
+    EXPECT_EQ(defaultStatsPath("out/shot.0012.exr"), "out/shot.0012.stats.json");
+}
+
+TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
+    RenderStats stats;
+    stats.seconds["render"] = 0.5;
+    stats.counts["rays"] = 1234;
+    stats.info["method"] = "stochastic";
+    const auto path = std::filesystem::temp_directory_path() / "clipblur_stats_test" / "s.json";
+    writeStats(path, statsToJson(stats, 3, "x.exr", 2));
+    std::ifstream in(path);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j.at("frame"), 3);
+    EXPECT_EQ(j.at("threads"), 2);
+    EXPECT_EQ(j.at("counts").at("rays"), 1234);
+    EXPECT_EQ(j.at("seconds").at("render"), 0.5);
+    EXPECT_EQ(j.at("info").at("method"), "stochastic");
+    EXPECT_GT(j.at("peak_memory_bytes").get<long long>(), 1 << 20);  // this process holds more than 1 MiB
+}
+
+}  // namespace clipblur
