@@ -10,5 +10,7 @@ namespace clipblur::cli {
 // process exit code. Errors are thrown as clipblur::Error and reported once, in main.
 using Action = std::function<int()>;
 
+// `clipblur validate JOB [--set key=value]...`: loads and checks a job, prints a summary.
+Action addValidateCommand(CLI::App& app);
 
 }  // namespace clipblur::cli

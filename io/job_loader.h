@@ -13,4 +13,9 @@ namespace clipblur {
 // validates it. Throws clipblur::Error with file:line:col on any problem.
 RenderJob loadJob(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
+// The same from text in memory: `file_name` picks the front-end by its extension, names the source
+// in messages and anchors relative OBJ paths. Used by the fuzzer and by tests.
+RenderJob loadJobFromText(const std::string& text, const std::filesystem::path& file_name,
+                          const std::vector<std::string>& overrides = {});
+
 }  // namespace clipblur

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -53,6 +54,7 @@ struct RenderJob {
     OutputSettings output;
     std::string source_file;
     std::string config_hash;   // hash of the resolved config, for EXR metadata
+    std::vector<std::string> warnings;  // found while loading (degenerate triangles, camera inside an object)
 };
 
 }  // namespace clipblur

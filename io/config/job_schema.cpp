@@ -1,0 +1,356 @@
+#include "io/config/job_schema.h"
+
+#include <cmath>
+#include <map>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "io/config/schema_reader.h"
+#include "scene/primitives.h"
+#include "scene/scene_validation.h"
+
+namespace clipblur::config {
+
+namespace {
+
+constexpr double kBig = kMaxCoordinate;
+constexpr double kTiny = 1e-12;
+
+std::string indexed(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
+
+void checkCount(const ConfigNode& list, const std::vector<ConfigNode>& items, const std::string& what, int max) {
+    if (items.size() > static_cast<std::size_t>(max))
+        throwConfigError(list.loc, "'" + what + "' has " + std::to_string(items.size()) + " entries, at most " +
+                                       std::to_string(max) + " are allowed");
+}
+
+glm::dvec3 nonZeroDirection(MapReader& map, std::string_view key, glm::dvec3 fallback) {
+    const ConfigNode* n = map.optional(key);
+    if (!n) return fallback;
+    const glm::dvec3 v = asVec3(*n, map.keyPath(key), -kBig, kBig, false);
+    if (!(glm::length(v) > 0.0)) throwConfigError(n->loc, "'" + map.keyPath(key) + "' must not be the zero vector");
+    return v;
+}
+
+void readFilm(MapReader map, Film& film) {
+    film.width = map.integer("width", film.width, 1, kMaxImageSide);
+    film.height = map.integer("height", film.height, 1, kMaxImageSide);
+    if (static_cast<std::int64_t>(film.width) * film.height > kMaxImagePixels)
+        throwConfigError(map.loc(), "film is " + std::to_string(film.width) + "x" + std::to_string(film.height) +
+                                        " pixels, more than the limit of 2^28");
+    film.background = map.vec3("background", film.background, 0.0, kBig, true);
+    map.finish();
+}
+
+void readCamera(MapReader map, Camera& camera, std::vector<FileLoc>& key_locs) {
+    const ConfigNode* vfov = map.optional("vfov");
+    const ConfigNode* focal = map.optional("focal_length");
+    const ConfigNode* film_height = map.optional("film_height");
+    if (vfov && (focal || film_height))
+        throwConfigError(focal ? focal->loc : film_height->loc,
+                         "give either 'camera.vfov' or 'camera.focal_length' with 'camera.film_height', not both");
+    if (vfov) camera.vfov_degrees = asNumber(*vfov, "camera.vfov", 1e-3, 179.0);
+    if (focal || film_height) {
+        if (!focal || !film_height)
+            throwConfigError(map.loc(), "'camera.focal_length' and 'camera.film_height' must be given together");
+        const double f = asNumber(*focal, "camera.focal_length", 1e-3, 1e6);
+        const double h = asNumber(*film_height, "camera.film_height", 1e-3, 1e6);
+        camera.vfov_degrees = 2.0 * std::atan(0.5 * h / f) * 180.0 / M_PI;
+    }
+    const ConfigNode& keys_node = map.required("keys");
+    const auto& keys = asList(keys_node, "camera.keys");
+    if (keys.empty()) throwConfigError(keys_node.loc, "'camera.keys' needs at least one key");
+    checkCount(keys_node, keys, "camera.keys", kMaxKeys);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        MapReader k(keys[i], indexed("camera.keys", i));
+        CameraKey key;
+        key.time = k.number("time", 0.0, -kBig, kBig);
+        key.position = k.vec3("position", key.position, -kBig, kBig, false);
+        key.view = nonZeroDirection(k, "view", key.view);
+        key.up = nonZeroDirection(k, "up", key.up);
+        k.finish();
+        camera.keys.push_back(key);
+        key_locs.push_back(k.loc());
+    }
+    map.finish();
+}
+
+void readShutter(MapReader map, Shutter& shutter) {
+    shutter.open = map.number("open", shutter.open, 0.0, 1.0);
+    const ConfigNode* close = map.optional("close");
+    if (close) shutter.close = asNumber(*close, "shutter.close", 0.0, 1.0);
+    if (shutter.close < shutter.open)
+        throwConfigError(close ? close->loc : map.loc(), "'shutter.close' must not be before 'shutter.open'");
+    map.finish();
+}
+
+void readFrames(MapReader map, FrameRange& frames) {
+    frames.first = map.integer("first", frames.first, -kMaxFrameCount, kMaxFrameCount);
+    const ConfigNode* last = map.optional("last");
+    frames.last = last ? static_cast<int>(asInteger(*last, "frames.last", -kMaxFrameCount, kMaxFrameCount))
+                       : frames.first;
+    if (frames.last < frames.first)
+        throwConfigError(last ? last->loc : map.loc(), "'frames.last' must not be before 'frames.first'");
+    if (static_cast<std::int64_t>(frames.last) - frames.first >= kMaxFrameCount)
+        throwConfigError(last ? last->loc : map.loc(), "more than " + std::to_string(kMaxFrameCount) + " frames");
+    frames.fps = map.number("fps", frames.fps, 1e-3, 1e4);
+    map.finish();
+}
+
+std::map<std::string, int> readMaterials(const ConfigNode* node, std::vector<Material>& materials) {
+    std::map<std::string, int> by_name;
+    if (node) {
+        const auto& items = asList(*node, "materials");
+        checkCount(*node, items, "materials", kMaxKeys);
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            MapReader m(items[i], indexed("materials", i));
+            const ConfigNode& name_node = m.required("name");
+            const std::string name = asString(name_node, m.keyPath("name"));
+            if (!by_name.emplace(name, static_cast<int>(i)).second)
+                throwConfigError(name_node.loc, "duplicate material name '" + name + "'");
+            Material mat;
+            mat.base_color = m.vec3("color", mat.base_color, 0.0, kBig, true);
+            mat.two_sided = m.boolean("two_sided", mat.two_sided);
+            if (const ConfigNode* tex = m.optional("texture")) {
+                MapReader t(*tex, m.keyPath("texture"));
+                mat.texture.kind = asChoice(t.required("type"), t.keyPath("type"), {"checker", "stripe"}) == 0
+                                       ? Texture::Kind::Checker
+                                       : Texture::Kind::Stripe;
+                mat.texture.color2 = t.vec3("color2", mat.texture.color2, 0.0, kBig, true);
+                mat.texture.scale = t.number("scale", mat.texture.scale, kTiny, kBig);
+                t.finish();
+            }
+            m.finish();
+            materials.push_back(mat);
+        }
+    }
+    if (materials.empty()) materials.push_back(Material{});
+    return by_name;
+}
+
+void readLights(const ConfigNode* node, std::vector<Light>& lights) {
+    if (!node) return;
+    const auto& items = asList(*node, "lights");
+    checkCount(*node, items, "lights", kMaxKeys);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        MapReader l(items[i], indexed("lights", i));
+        Light light;
+        light.kind = asChoice(l.required("type"), l.keyPath("type"), {"directional", "point"}) == 0
+                         ? Light::Kind::Directional
+                         : Light::Kind::Point;
+        light.color = l.vec3("color", light.color, 0.0, kBig, true);
+        light.intensity = l.number("intensity", light.intensity, 0.0, kBig);
+        // Only the key that fits the type is consumed; the other one is reported as unknown.
+        if (light.kind == Light::Kind::Directional) {
+            if (!l.has("direction")) l.required("direction");
+            light.direction = nonZeroDirection(l, "direction", light.direction);
+        } else {
+            light.position = asVec3(l.required("position"), l.keyPath("position"), -kBig, kBig, false);
+        }
+        l.finish();
+        lights.push_back(light);
+    }
+}
+
+MeshSource readPrimitive(MapReader p) {
+    MeshSource src;
+    src.loc = p.loc();
+    src.kind = static_cast<MeshSource::Kind>(
+        asChoice(p.required("type"), p.keyPath("type"), {"quad", "grid", "box", "sphere"}));
+    switch (src.kind) {
+        case MeshSource::Kind::Quad:
+        case MeshSource::Kind::Grid: {
+            if (const ConfigNode* s = p.optional("size")) {
+                if (s->isScalar()) {
+                    src.size = glm::dvec3(asNumber(*s, p.keyPath("size"), kTiny, kBig));
+                } else if (s->isSequence() && s->items.size() == 2) {
+                    src.size.x = asNumber(s->items[0], p.keyPath("size") + "[0]", kTiny, kBig);
+                    src.size.y = asNumber(s->items[1], p.keyPath("size") + "[1]", kTiny, kBig);
+                } else {
+                    throwConfigError(s->loc, "'" + p.keyPath("size") + "' must be a number or a list of 2 numbers");
+                }
+            }
+            if (src.kind == MeshSource::Kind::Grid) {
+                src.nx = src.nz = 10;
+                if (const ConfigNode* d = p.optional("divisions")) {
+                    if (d->isSequence() && d->items.size() == 2) {
+                        src.nx = static_cast<int>(asInteger(d->items[0], p.keyPath("divisions") + "[0]", 1, kMaxDivisions));
+                        src.nz = static_cast<int>(asInteger(d->items[1], p.keyPath("divisions") + "[1]", 1, kMaxDivisions));
+                    } else {
+                        src.nx = src.nz = static_cast<int>(asInteger(*d, p.keyPath("divisions"), 1, kMaxDivisions));
+                    }
+                }
+            }
+            src.triangles = gridTriangleCount(src.nx, src.nz);
+            break;
+        }
+        case MeshSource::Kind::Box:
+            src.size = p.vec3("size", src.size, kTiny, kBig, true);
+            src.triangles = 12;
+            break;
+        case MeshSource::Kind::Sphere:
+            src.size = glm::dvec3(p.number("size", 1.0, kTiny, kBig));
+            src.segments = p.integer("segments", src.segments, 3, kMaxDivisions);
+            src.triangles = sphereTriangleCount(src.segments);
+            break;
+        case MeshSource::Kind::Obj: break;
+    }
+    p.finish();
+    return src;
+}
+
+TransformKey readTransformKey(MapReader k) {
+    TransformKey key;
+    key.time = k.number("time", 0.0, -kBig, kBig);
+    key.translate = k.vec3("translate", key.translate, -kBig, kBig, false);
+    if (const ConfigNode* r = k.optional("rotate")) {
+        MapReader rot(*r, k.keyPath("rotate"));
+        const glm::dvec3 axis = nonZeroDirection(rot, "axis", glm::dvec3(0.0, 1.0, 0.0));
+        const double angle = rot.number("angle_deg", 0.0, -1e6, 1e6);
+        rot.finish();
+        key.rotate = glm::angleAxis(angle * M_PI / 180.0, glm::normalize(axis));
+    }
+    key.scale = k.vec3("scale", key.scale, kTiny, kBig, true);
+    k.finish();
+    return key;
+}
+
+void readObject(MapReader o, std::size_t index, const std::map<std::string, int>& materials, JobDescription& out) {
+    Object object;
+    object.loc = o.loc();
+    object.name = o.string("name", "object" + std::to_string(index));
+    if (const ConfigNode* m = o.optional("material")) {
+        const std::string name = asString(*m, o.keyPath("material"));
+        const auto it = materials.find(name);
+        if (it == materials.end()) throwConfigError(m->loc, "unknown material '" + name + "'");
+        object.material = it->second;
+    }
+
+    const ConfigNode* prim = o.optional("primitive");
+    const ConfigNode* obj = o.optional("obj");
+    if (prim && obj) throwConfigError(obj->loc, "'" + o.path() + "' has both 'primitive' and 'obj'; give one");
+    if (!prim && !obj) throwConfigError(o.loc(), "'" + o.path() + "' needs a 'primitive' or an 'obj'");
+    MeshSource src;
+    if (prim) {
+        src = readPrimitive(MapReader(*prim, o.keyPath("primitive")));
+    } else {
+        src.kind = MeshSource::Kind::Obj;
+        src.obj_path = asString(*obj, o.keyPath("obj"));
+        src.loc = obj->loc;
+    }
+    if (src.triangles > kMaxTrianglesPerObject)
+        throwConfigError(src.loc, "'" + o.path() + "' would have " + std::to_string(src.triangles) +
+                                      " triangles, more than the limit of " + std::to_string(kMaxTrianglesPerObject));
+
+    std::vector<FileLoc> transform_locs;
+    if (const ConfigNode* t = o.optional("transform")) {
+        const auto& keys = asList(*t, o.keyPath("transform"));
+        checkCount(*t, keys, o.keyPath("transform"), kMaxKeys);
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            object.transform.push_back(readTransformKey(MapReader(keys[i], indexed(o.keyPath("transform"), i))));
+            transform_locs.push_back(keys[i].loc);
+        }
+    }
+    std::vector<FileLoc> deformation_locs;
+    if (const ConfigNode* d = o.optional("deformation")) {
+        const auto& keys = asList(*d, o.keyPath("deformation"));
+        checkCount(*d, keys, o.keyPath("deformation"), kMaxDeformationKeys);
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            MapReader k(keys[i], indexed(o.keyPath("deformation"), i));
+            MeshSource::Deformation def;
+            def.time = k.number("time", 0.0, -kBig, kBig);
+            const ConfigNode& path = k.required("obj");
+            def.obj_path = asString(path, k.keyPath("obj"));
+            def.loc = path.loc;
+            k.finish();
+            src.deformation.push_back(def);
+            deformation_locs.push_back(keys[i].loc);
+        }
+    }
+    o.finish();
+    out.job.scene.objects.push_back(std::move(object));
+    out.meshes.push_back(std::move(src));
+    out.locations.transform_keys.push_back(std::move(transform_locs));
+    out.locations.deformation_keys.push_back(std::move(deformation_locs));
+}
+
+void readRender(MapReader map, RenderSettings& r) {
+    if (const ConfigNode* m = map.optional("method"))
+        r.method = static_cast<Method>(
+            asChoice(*m, "render.method", {"clipped", "stochastic", "accumulation", "frame0_only"}));
+    r.samples = map.integer("samples", r.samples, 1, kMaxSamples);
+    r.max_subframes = map.integer("max_subframes", r.max_subframes, 1, kMaxSubframes);
+    if (const ConfigNode* s = map.optional("subframes")) {
+        if (s->isScalar() && s->scalar == "auto")
+            r.subframes = 0;
+        else
+            r.subframes = static_cast<int>(asInteger(*s, "render.subframes", 1, r.max_subframes));
+    }
+    if (const ConfigNode* p = map.optional("path_method"))
+        r.path_method = static_cast<PathMethod>(asChoice(*p, "render.path_method", {"exact", "euler", "rk4"}));
+    r.ode_steps = map.integer("ode_steps", r.ode_steps, 1, kMaxOdeSteps);
+    r.visibility_rays = map.integer("visibility_rays", r.visibility_rays, 1, kMaxVisibilityRays);
+    r.shadows = map.boolean("shadows", r.shadows);
+    if (const ConfigNode* s = map.optional("seed")) r.seed = asUnsigned(*s, "render.seed");
+    r.tile_size = map.integer("tile_size", r.tile_size, 1, kMaxTileSize);
+    map.finish();
+}
+
+void readOutput(MapReader map, OutputSettings& out) {
+    if (const ConfigNode* p = map.optional("path")) {
+        out.path = asString(*p, "output.path");
+        if (out.path.empty()) throwConfigError(p->loc, "'output.path' must not be empty");
+    }
+    out.half = map.boolean("half", out.half);
+    out.png_preview = map.boolean("png_preview", out.png_preview);
+    if (const ConfigNode* a = map.optional("aovs")) {
+        const auto& items = asList(*a, "output.aovs");
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            const int which = asChoice(items[i], indexed("output.aovs", i), {"depth", "coverage", "motion"});
+            bool& flag = which == 0 ? out.aov_depth : which == 1 ? out.aov_coverage : out.aov_motion;
+            if (flag) throwConfigError(items[i].loc, "AOV '" + items[i].scalar + "' is listed twice");
+            flag = true;
+        }
+    }
+    out.stats_path = map.string("stats", out.stats_path);
+    map.finish();
+}
+
+}  // namespace
+
+JobDescription readJobDescription(const ConfigNode& root) {
+    JobDescription out;
+    RenderJob& job = out.job;
+    MapReader top(root, "");
+    const ConfigNode& version = top.required("version");
+    if (!version.isScalar() || version.style != ConfigNode::Style::Plain || version.scalar != "1")
+        throwConfigError(version.loc, "unsupported 'version' (this build reads version 1)");
+    job.version = 1;
+
+    if (const ConfigNode* n = top.optional("film")) readFilm(MapReader(*n, "film"), job.scene.film);
+    readCamera(MapReader(top.required("camera"), "camera"), job.scene.camera, out.locations.camera_keys);
+    if (const ConfigNode* n = top.optional("shutter")) readShutter(MapReader(*n, "shutter"), job.shutter);
+    if (const ConfigNode* n = top.optional("frames")) readFrames(MapReader(*n, "frames"), job.frames);
+    const auto materials = readMaterials(top.optional("materials"), job.scene.materials);
+    readLights(top.optional("lights"), job.scene.lights);
+    job.scene.ambient = top.vec3("ambient", job.scene.ambient, 0.0, kBig, true);
+
+    const ConfigNode& objects_node = top.required("objects");
+    const auto& objects = asList(objects_node, "objects");
+    if (objects.empty()) throwSceneError(objects_node.loc, "the scene has no objects");
+    checkCount(objects_node, objects, "objects", 1 << 20);
+    std::uint64_t total = 0;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        readObject(MapReader(objects[i], indexed("objects", i)), i, materials, out);
+        total += out.meshes.back().triangles;
+        if (total > kMaxTotalTriangles)
+            throwConfigError(objects[i].loc, "the scene would have more than " + std::to_string(kMaxTotalTriangles) +
+                                                 " triangles");
+    }
+    if (const ConfigNode* n = top.optional("render")) readRender(MapReader(*n, "render"), job.render);
+    if (const ConfigNode* n = top.optional("output")) readOutput(MapReader(*n, "output"), job.output);
+    top.finish();
+    return out;
+}
+
+}  // namespace clipblur::config
