@@ -1,0 +1,84 @@
+#include "renderer/fragments/fragment_tile.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clipblur {
+
+void resolveTile(std::span<const ScreenTriangle> triangles, const TileRect& rect, const ResolverSettings& settings,
+                 TileScratch& scratch, FragmentTile& out) {
+    const std::size_t npix = std::size_t(std::max(rect.width, 0)) * std::max(rect.height, 0);
+    out.rect = rect;
+    out.offsets.assign(npix + 1, 0);
+    out.fragments.clear();
+    out.covered_area.assign(npix, 0.0);
+    out.rejected_triangles = 0;
+    out.dropped_area = 0.0;
+    if (npix == 0) return;
+
+    scratch.entries.clear();
+    for (std::size_t ti = 0; ti < triangles.size(); ++ti) {
+        const ScreenTriangle& t = triangles[ti];
+        if (!validScreenTriangle(t)) {
+            ++out.rejected_triangles;
+            continue;
+        }
+        double lox = t.raster[0].x, hix = lox, loy = t.raster[0].y, hiy = loy;
+        for (int i = 1; i < 3; ++i) {
+            lox = std::min(lox, t.raster[i].x);
+            hix = std::max(hix, t.raster[i].x);
+            loy = std::min(loy, t.raster[i].y);
+            hiy = std::max(hiy, t.raster[i].y);
+        }
+        if (!(hix >= rect.x0 && lox <= rect.x0 + rect.width && hiy >= rect.y0 && loy <= rect.y0 + rect.height)) {
+            continue;
+        }
+        const int x_begin = std::max(rect.x0, int(std::floor(std::max(lox, double(rect.x0)))));
+        const int x_end = std::min(rect.x0 + rect.width - 1, int(std::floor(std::min(hix, double(rect.x0 + rect.width)))));
+        const int y_begin = std::max(rect.y0, int(std::floor(std::max(loy, double(rect.y0)))));
+        const int y_end = std::min(rect.y0 + rect.height - 1, int(std::floor(std::min(hiy, double(rect.y0 + rect.height)))));
+        const double nearest = std::max({t.inv_depth[0], t.inv_depth[1], t.inv_depth[2]});
+        for (int y = y_begin; y <= y_end; ++y) {
+            for (int x = x_begin; x <= x_end; ++x) {
+                const auto pixel = std::uint32_t(std::size_t(y - rect.y0) * rect.width + (x - rect.x0));
+                scratch.entries.push_back({pixel, std::uint32_t(ti), nearest});
+            }
+        }
+    }
+
+    // Counting sort by pixel, then front to back within a pixel.
+    scratch.counts.assign(npix + 1, 0);
+    for (const auto& e : scratch.entries) ++scratch.counts[e.pixel + 1];
+    for (std::size_t i = 0; i < npix; ++i) scratch.counts[i + 1] += scratch.counts[i];
+    scratch.sorted.resize(scratch.entries.size());
+    {
+        std::vector<std::uint32_t>& next = scratch.counts;
+        for (const auto& e : scratch.entries) scratch.sorted[next[e.pixel]++] = e;
+        // next[i] now holds the end of pixel i; shift back to starts.
+        for (std::size_t i = npix; i > 0; --i) next[i] = next[i - 1];
+        next[0] = 0;
+    }
+
+    PixelResolver& resolver = scratch.resolver;
+    resolver.setSettings(settings);
+    for (std::size_t i = 0; i < npix; ++i) {
+        const auto begin = scratch.sorted.begin() + scratch.counts[i];
+        const auto end = scratch.sorted.begin() + scratch.counts[i + 1];
+        out.offsets[i] = std::uint32_t(out.fragments.size());
+        if (begin == end) continue;
+        std::sort(begin, end, [](const TileScratch::Entry& a, const TileScratch::Entry& b) {
+            return a.nearest != b.nearest ? a.nearest > b.nearest : a.triangle < b.triangle;
+        });
+        const int x = rect.x0 + int(i % rect.width);
+        const int y = rect.y0 + int(i / rect.width);
+        resolver.reset(x, y);
+        for (auto it = begin; it != end; ++it) resolver.insert(triangles[it->triangle]);
+        const auto& frags = resolver.fragments();
+        out.fragments.insert(out.fragments.end(), frags.begin(), frags.end());
+        out.covered_area[i] = resolver.coveredArea();
+        out.dropped_area += resolver.droppedArea();
+    }
+    out.offsets[npix] = std::uint32_t(out.fragments.size());
+}
+
+}  // namespace clipblur

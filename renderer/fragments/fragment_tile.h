@@ -1,0 +1,56 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "renderer/fragments/fragment.h"
+#include "renderer/fragments/pixel_resolver.h"
+#include "renderer/fragments/screen_triangle.h"
+
+namespace clipblur {
+
+// A rectangle of pixels [x0, x0+width) x [y0, y0+height).
+struct TileRect {
+    int x0 = 0;
+    int y0 = 0;
+    int width = 0;
+    int height = 0;
+};
+
+// Per-pixel fragment lists of a tile in CSR form: the fragments of pixel (x, y) are
+// fragments[offsets[i]] .. fragments[offsets[i+1]-1] with i = (y - y0) * width + (x - x0).
+struct FragmentTile {
+    TileRect rect;
+    std::vector<std::uint32_t> offsets;
+    std::vector<Fragment> fragments;
+    std::vector<double> covered_area;  // per pixel, px^2
+    long long rejected_triangles = 0;  // non-finite, degenerate or behind the eye
+    double dropped_area = 0.0;         // slivers below ResolverSettings::min_area, summed over the tile
+
+    std::span<const Fragment> pixel(int x, int y) const {
+        const std::size_t i = std::size_t(y - rect.y0) * rect.width + (x - rect.x0);
+        return {fragments.data() + offsets[i], fragments.data() + offsets[i + 1]};
+    }
+};
+
+// Reusable buffers for resolveTile; one per worker task.
+struct TileScratch {
+    struct Entry {
+        std::uint32_t pixel;
+        std::uint32_t triangle;
+        double nearest;  // largest vertex 1/z: the sort key for front-to-back insertion
+    };
+    std::vector<Entry> entries;
+    std::vector<std::uint32_t> counts;
+    std::vector<Entry> sorted;
+    PixelResolver resolver;
+};
+
+// Bins triangles to the tile's pixels by bounding box, then per pixel inserts them front to back (nearest
+// vertex first, ties by triangle index) into a PixelResolver. Both frame-0/1 visibility and the subframe
+// re-clip of propagated fragments call this. Deterministic: the result depends only on the inputs.
+void resolveTile(std::span<const ScreenTriangle> triangles, const TileRect& rect, const ResolverSettings& settings,
+                 TileScratch& scratch, FragmentTile& out);
+
+}  // namespace clipblur

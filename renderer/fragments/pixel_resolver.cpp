@@ -1,0 +1,231 @@
+#include "renderer/fragments/pixel_resolver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "renderer/geometry/pixel_clip.h"
+
+namespace clipblur {
+
+namespace {
+
+// Sources after surface src is found coincident with a piece holding `sources`: one source per layer,
+// within a layer the lower source index wins (z-fighting resolved independently of insertion order).
+std::uint8_t mergeSources(std::array<FragmentSource, 2>& sources, std::uint8_t count, const FragmentSource& src) {
+    for (int i = 0; i < count; ++i) {
+        if (sources[i].layer == src.layer) {
+            if (src.source < sources[i].source) sources[i] = src;
+            return count;
+        }
+    }
+    sources[count++] = src;
+    if (count == 2 && sources[1].layer < sources[0].layer) std::swap(sources[0], sources[1]);
+    return count;
+}
+
+}  // namespace
+
+void PixelResolver::reset(int px, int py) {
+    px_ = px;
+    py_ = py;
+    epoch_ = 0;
+    pieces_.clear();
+    work_.clear();
+    fragments_.clear();
+    fragments_valid_ = false;
+    dropped_area_ = CompensatedSum();
+    rejected_ = 0;
+}
+
+bool PixelResolver::dropIfSliver(const ConvexPolygon& poly, double& area) {
+    area = poly.degenerate() ? 0.0 : poly.area();
+    if (area > settings_.min_area) return false;
+    dropped_area_.add(std::max(area, 0.0));
+    return true;
+}
+
+void PixelResolver::insert(const ScreenTriangle& t) {
+    if (t.layer > 1) throw std::invalid_argument("ScreenTriangle::layer must be 0 or 1");
+    fragments_valid_ = false;
+    if (!validScreenTriangle(t)) {
+        ++rejected_;
+        return;
+    }
+    const TriangleClipper clipper(t.raster);
+    const glm::dvec2 origin(px_, py_);
+    DepthPlane plane;
+    if (!clipper.valid() || !inverseDepthPlane(t, origin, plane)) {
+        ++rejected_;
+        return;
+    }
+    ConvexPolygon piece;
+    clipper.clipToPixel(px_, py_, piece);
+    if (piece.degenerate()) return;
+    // Exact: every vertex lies in [px, px+1] x [py, py+1].
+    for (int i = 0; i < piece.n; ++i) piece.v[i] -= origin;
+    double area = 0.0;
+    if (dropIfSliver(piece, area)) return;
+    insertPolygon(piece, plane, FragmentSource{t.source, t.layer, t.weight});
+}
+
+void PixelResolver::queueWork(const ConvexPolygon& poly, std::size_t start) {
+    double area = 0.0;
+    if (dropIfSliver(poly, area)) return;
+    capped_.clear();
+    splitToCapacity(poly, kMaxStoredVertices, capped_);
+    for (const ConvexPolygon& c : capped_) work_.push_back(Work{c, start});
+}
+
+void PixelResolver::insertPolygon(const ConvexPolygon& local, const DepthPlane& plane, const FragmentSource& src) {
+    ++epoch_;
+    work_.clear();
+    queueWork(local, 0);
+    Piece mine;
+    mine.plane = plane;
+    mine.sources[0] = src;
+    mine.source_count = 1;
+    mine.epoch = epoch_;
+    while (!work_.empty()) {
+        const Work w = work_.back();
+        work_.pop_back();
+        const Bounds2 box = w.poly.bounds();
+        bool consumed = false;
+        for (std::size_t qi = w.start; qi < pieces_.size() && !consumed; ++qi) {
+            const Piece& q = pieces_[qi];
+            if (q.dead || q.epoch == epoch_ || !q.box.overlaps(box)) continue;
+            consumed = resolve(w.poly, qi, plane, src);
+        }
+        if (!consumed) addPiece(w.poly, mine);
+    }
+}
+
+bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthPlane& plane,
+                            const FragmentSource& src) {
+    outside_.clear();
+    ConvexPolygon overlap;
+    splitByConvex(w, pieces_[qi].poly, outside_, overlap);
+    if (overlap.degenerate() || overlap.area() <= settings_.min_area) return false;
+
+    // w is consumed: the parts outside Q go on against the pieces after Q.
+    for (const ConvexPolygon& o : outside_) queueWork(o, qi + 1);
+
+    const Piece q = pieces_[qi];  // a copy: pieces_ may grow below
+    std::array<double, kMaxPolygonVertices> d;
+    bool all_close = true;
+    bool any_nearer = false;
+    bool any_farther = false;
+    for (int k = 0; k < overlap.n; ++k) {
+        const double wp = plane(overlap.v[k]);
+        const double wq = q.plane(overlap.v[k]);
+        d[k] = wp - wq;
+        const double tol = settings_.coincident_rel * std::max(std::abs(wp), std::abs(wq));
+        all_close &= std::abs(d[k]) <= tol;
+        any_nearer |= d[k] > tol;
+        any_farther |= d[k] < -tol;
+    }
+
+    Piece mine;
+    mine.plane = plane;
+    mine.sources[0] = src;
+    mine.source_count = 1;
+    mine.epoch = epoch_;
+
+    if (all_close) {
+        Piece mixed = q;
+        mixed.source_count = mergeSources(mixed.sources, q.source_count, src);
+        if (mixed.source_count == q.source_count && mixed.sources == q.sources) return true;  // Q wins
+        if (mixed.sources[0] == src) mixed.plane = plane;
+        mixed.epoch = epoch_;
+        shrinkPiece(qi, w, nullptr);
+        addPiece(overlap, mixed);
+        return true;
+    }
+    if (!any_farther) {
+        shrinkPiece(qi, w, nullptr);
+        addPiece(overlap, mine);
+        return true;
+    }
+    if (!any_nearer) return true;  // P hidden behind Q over the whole overlap
+
+    // Interpenetration: d is affine, so its zero set is a line through the overlap.
+    ConvexPolygon nearer;
+    ConvexPolygon farther;
+    splitByValues(overlap, d.data(), nearer, farther);
+    shrinkPiece(qi, w, &farther);
+    addPiece(nearer, mine);
+    return true;
+}
+
+void PixelResolver::shrinkPiece(std::size_t qi, const ConvexPolygon& w, const ConvexPolygon* keep) {
+    const Piece q = pieces_[qi];
+    remnants_.clear();
+    ConvexPolygon unused;
+    splitByConvex(q.poly, w, remnants_, unused);
+    if (keep != nullptr) remnants_.push_back(*keep);
+    pieces_[qi].dead = true;
+    // The first remnant reuses Q's slot so the pieces after it keep their order.
+    bool reused = false;
+    for (const ConvexPolygon& r : remnants_) {
+        double area = 0.0;
+        if (dropIfSliver(r, area)) continue;
+        capped_.clear();
+        splitToCapacity(r, kMaxStoredVertices, capped_);
+        for (const ConvexPolygon& c : capped_) {
+            Piece p = q;
+            p.poly = c;
+            p.box = c.bounds();
+            p.area = c.area();
+            if (!reused) {
+                pieces_[qi] = p;
+                reused = true;
+            } else {
+                pieces_.push_back(p);
+            }
+        }
+    }
+    remnants_.clear();
+}
+
+void PixelResolver::addPiece(const ConvexPolygon& poly, const Piece& data) {
+    double area = 0.0;
+    if (dropIfSliver(poly, area)) return;
+    capped_.clear();
+    splitToCapacity(poly, kMaxStoredVertices, capped_);
+    for (const ConvexPolygon& c : capped_) {
+        Piece p = data;
+        p.poly = c;
+        p.box = c.bounds();
+        p.area = c.area();
+        p.dead = false;
+        pieces_.push_back(p);
+    }
+}
+
+double PixelResolver::coveredArea() const {
+    CompensatedSum sum;
+    for (const Piece& p : pieces_) {
+        if (!p.dead) sum.add(p.area);
+    }
+    return sum.value();
+}
+
+const std::vector<Fragment>& PixelResolver::fragments() {
+    if (fragments_valid_) return fragments_;
+    fragments_.clear();
+    const glm::dvec2 origin(px_, py_);
+    for (const Piece& p : pieces_) {
+        if (p.dead) continue;
+        Fragment f;
+        f.vertex_count = static_cast<std::uint8_t>(p.poly.n);
+        for (int i = 0; i < p.poly.n; ++i) f.vertices[i] = p.poly.v[i] + origin;
+        f.source_count = p.source_count;
+        f.sources = p.sources;
+        f.area = p.area;
+        fragments_.push_back(f);
+    }
+    fragments_valid_ = true;
+    return fragments_;
+}
+
+}  // namespace clipblur

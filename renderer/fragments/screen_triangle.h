@@ -1,0 +1,54 @@
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include <glm/vec2.hpp>
+
+namespace clipblur {
+
+// A triangle projected to raster space, the input of the clipping kernel.
+//
+// inv_depth is 1/z with z the camera-space depth (distance along the view axis, > 0). For a planar 3D
+// triangle under a pinhole projection, 1/z is an affine function of raster (x, y), and so is b_i/z for each
+// perspective-correct barycentric b_i; both are therefore known exactly from the three raster vertices. The
+// paper sorts by range (distance to the eye); along one eye ray range and z are proportional, so the
+// visibility order is the same, but only 1/z interpolates affinely.
+struct ScreenTriangle {
+    std::array<glm::dvec2, 3> raster{};
+    std::array<double, 3> inv_depth{};
+    std::uint32_t source = 0;  // caller's index (mesh triangle, propagated fragment, ...)
+    std::uint8_t layer = 0;    // 0 or 1: which bounding frame the triangle comes from
+    float weight = 1.0f;       // mix weight when surfaces of both layers coincide
+};
+
+// Finite raster vertices, finite positive inverse depths (in front of the eye) and non-zero area.
+bool validScreenTriangle(const ScreenTriangle& t);
+
+// An affine function a*x + b*y + c of (pixel-local or raster) position.
+struct DepthPlane {
+    double a = 0.0;
+    double b = 0.0;
+    double c = 0.0;
+
+    double operator()(const glm::dvec2& p) const { return std::fma(a, p.x, std::fma(b, p.y, c)); }
+};
+
+// The inverse-depth plane of t in coordinates relative to origin (raster minus origin), so that evaluating
+// it near the origin does not cancel. Returns false for degenerate (zero-area) triangles.
+bool inverseDepthPlane(const ScreenTriangle& t, const glm::dvec2& origin, DepthPlane& plane);
+
+// What a raster point means on the source triangle.
+struct SourceSample {
+    double inv_depth = 0.0;               // 1/z at the point
+    std::array<double, 3> bary{};         // perspective-correct barycentrics on the 3D triangle, sum 1
+    std::array<double, 3> screen_bary{};  // affine raster-space barycentrics
+};
+
+// 1/z = sum(l_i w_i) and b_i = l_i w_i / (1/z), where l_i are the raster barycentrics and w_i = 1/z_i:
+// b_i/z is affine in raster space and equals w_i at vertex i and 0 at the others. Returns false for a
+// degenerate triangle.
+bool evalSource(const ScreenTriangle& t, const glm::dvec2& raster, SourceSample& out);
+
+}  // namespace clipblur

@@ -1,0 +1,157 @@
+#include "renderer/geometry/convex_polygon.h"
+
+#include <algorithm>
+
+#include <glm/common.hpp>
+
+#include "renderer/geometry/predicates.h"
+
+namespace clipblur {
+
+namespace {
+
+// The crossing point of edge (a, b) with the zero of an affine function taking values sa at a and sb at b
+// (opposite signs). Computed from the lexicographically smaller endpoint so that a neighbouring piece that
+// walks the same edge in the other direction gets the identical point.
+glm::dvec2 crossing(const glm::dvec2& a, double sa, const glm::dvec2& b, double sb) {
+    const bool swap = (b.x < a.x) || (b.x == a.x && b.y < a.y);
+    const glm::dvec2& p = swap ? b : a;
+    const glm::dvec2& q = swap ? a : b;
+    const double sp = swap ? sb : sa;
+    const double sq = swap ? sa : sb;
+    const double t = sp / (sp - sq);  // in [0, 1] since sp and sq have opposite signs
+    return {std::fma(t, q.x - p.x, p.x), std::fma(t, q.y - p.y, p.y)};
+}
+
+}  // namespace
+
+ConvexPolygon ConvexPolygon::triangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+    ConvexPolygon p;
+    p.v[0] = a;
+    if (orient2d(a, b, c) >= 0.0) {
+        p.v[1] = b;
+        p.v[2] = c;
+    } else {
+        p.v[1] = c;
+        p.v[2] = b;
+    }
+    p.n = 3;
+    return p;
+}
+
+double ConvexPolygon::area() const {
+    if (n < 3) return 0.0;
+    CompensatedSum sum;
+    for (int i = 1; i + 1 < n; ++i) sum.add(orient2d(v[0], v[i], v[i + 1]));
+    return 0.5 * sum.value();
+}
+
+Bounds2 ConvexPolygon::bounds() const {
+    Bounds2 b{v[0], v[0]};
+    for (int i = 1; i < n; ++i) {
+        b.lo = glm::min(b.lo, v[i]);
+        b.hi = glm::max(b.hi, v[i]);
+    }
+    return b;
+}
+
+double ConvexPolygon::edgeSide(int i, const glm::dvec2& p) const {
+    return orient2d(v[i], v[i + 1 == n ? 0 : i + 1], p);
+}
+
+void splitByValues(const ConvexPolygon& p, const double* s, ConvexPolygon& inside, ConvexPolygon& outside) {
+    inside.clear();
+    outside.clear();
+    for (int i = 0; i < p.n; ++i) {
+        const int j = i + 1 == p.n ? 0 : i + 1;
+        const double si = s[i];
+        const double sj = s[j];
+        if (si >= 0.0) inside.push(p.v[i]);
+        if (si <= 0.0) outside.push(p.v[i]);
+        if ((si > 0.0 && sj < 0.0) || (si < 0.0 && sj > 0.0)) {
+            const glm::dvec2 x = crossing(p.v[i], si, p.v[j], sj);
+            inside.push(x);
+            outside.push(x);
+        }
+    }
+    inside.close();
+    outside.close();
+}
+
+void clipByValues(const ConvexPolygon& p, const double* s, ConvexPolygon& inside) {
+    inside.clear();
+    for (int i = 0; i < p.n; ++i) {
+        const int j = i + 1 == p.n ? 0 : i + 1;
+        const double si = s[i];
+        const double sj = s[j];
+        if (si >= 0.0) inside.push(p.v[i]);
+        if ((si > 0.0 && sj < 0.0) || (si < 0.0 && sj > 0.0)) inside.push(crossing(p.v[i], si, p.v[j], sj));
+    }
+    inside.close();
+}
+
+void clipByLine(const ConvexPolygon& p, const glm::dvec2& a, const glm::dvec2& b, ConvexPolygon& inside) {
+    std::array<double, kMaxPolygonVertices> s;
+    for (int i = 0; i < p.n; ++i) s[i] = orient2d(a, b, p.v[i]);
+    clipByValues(p, s.data(), inside);
+}
+
+bool splitByConvex(const ConvexPolygon& p, const ConvexPolygon& q, std::vector<ConvexPolygon>& outside,
+                   ConvexPolygon& inside) {
+    std::array<double, kMaxPolygonVertices> s;
+    ConvexPolygon rest = p;
+    ConvexPolygon in;
+    ConvexPolygon out;
+    for (int e = 0; e < q.n; ++e) {
+        bool any_in = false;
+        bool any_out = false;
+        for (int i = 0; i < rest.n; ++i) {
+            s[i] = q.edgeSide(e, rest.v[i]);
+            any_in |= s[i] > 0.0;
+            any_out |= s[i] < 0.0;
+        }
+        if (!any_out) continue;  // rest lies on the inner side of this edge line
+        if (!any_in) {
+            // Nothing of rest is strictly inside this edge: the intersection is empty.
+            outside.push_back(rest);
+            inside.clear();
+            return false;
+        }
+        splitByValues(rest, s.data(), in, out);
+        if (!out.degenerate()) outside.push_back(out);
+        rest = in;
+        if (rest.degenerate()) break;
+    }
+    inside = rest;
+    return true;
+}
+
+void intersect(const ConvexPolygon& p, const ConvexPolygon& q, ConvexPolygon& out) {
+    ConvexPolygon rest = p;
+    for (int e = 0; e < q.n && !rest.degenerate(); ++e) {
+        clipByLine(rest, q.v[e], q.v[e + 1 == q.n ? 0 : e + 1], out);
+        rest = out;
+    }
+    out = rest;
+}
+
+void splitToCapacity(const ConvexPolygon& p, int max_vertices, std::vector<ConvexPolygon>& out) {
+    if (p.n <= max_vertices) {
+        out.push_back(p);
+        return;
+    }
+    // Fan groups around v[0]: vertices 0, k, k+1, ..., k+max_vertices-2; consecutive groups share the
+    // diagonal v[0]-v[k+max_vertices-2], and each group is convex as a sub-polygon of a convex polygon.
+    int k = 1;
+    while (k + 1 < p.n) {
+        const int last = std::min(p.n - 1, k + max_vertices - 2);
+        ConvexPolygon part;
+        part.push(p.v[0]);
+        for (int i = k; i <= last; ++i) part.push(p.v[i]);
+        part.close();
+        if (!part.degenerate()) out.push_back(part);
+        k = last;
+    }
+}
+
+}  // namespace clipblur
