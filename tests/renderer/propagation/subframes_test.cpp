@@ -61,8 +61,10 @@ TEST(Subframes, CurvedPathGetsMoreSubframesThanItsChord) {
     Scene scene = testing::stillCameraScene();
     scene.camera.keys.push_back({1.0, {0, 0, 0}, {0, 0, 1}, {1, 0, 0}});
     const Projection proj = projectionOf(scene);
-    const double x = -100.0 / proj.pixelsPerUnit() * 10.0;  // 100 px right of centre at depth 10
-    scene.objects.push_back(testing::triangleObject({x, 0, 10}, {x + 1, 0, 10}, {x, 1, 10}));
+    // 100 px from the centre, diagonally (right and down) at depth 10, so the quarter arc passes an
+    // axis and bulges past the box of its end points.
+    const double c = -100.0 / std::sqrt(2.0) / proj.pixelsPerUnit() * 10.0;
+    scene.objects.push_back(testing::triangleObject({c, c, 10}, {c + 1, c, 10}, {c, c + 1, 10}));
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
     const SurfacePoint corner{0, 0, {1, 0, 0}};
     // Constant speed along the arc, so the quadrature is exact up to rounding.
@@ -76,10 +78,16 @@ TEST(Subframes, CurvedPathGetsMoreSubframesThanItsChord) {
     EXPECT_EQ(chord_count, 142);
     EXPECT_GT(plan.count, chord_count);
     // The swept box holds the whole arc, which bulges beyond the end points' box.
+    RasterBox ends;
+    ends.expand(a);
+    ends.expand(b);
+    int outside_ends = 0;
     for (int i = 0; i <= 1000; ++i) {
         const glm::dvec2 p = project(MotionSnapshot(scene, proj, i / 1000.0), scene, corner).raster;
         EXPECT_TRUE(fm.swept.overlaps(RasterBox{p, p})) << i;
+        if (!ends.overlaps(RasterBox{p, p})) ++outside_ends;
     }
+    EXPECT_GT(outside_ends, 100);
 }
 
 TEST(Subframes, PathThereAndBackCountsBothWays) {
