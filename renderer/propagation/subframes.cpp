@@ -37,7 +37,7 @@ void addKeyTimes(std::vector<double>& times, double t0, double t1, auto const& k
 
 ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
                                        int intervals_per_piece, double near_depth)
-    : scene_(&scene) {
+    : scene_(&scene), duration_(std::max(0.0, t1 - t0)) {
     breakpoints_.push_back(t0);
     addKeyTimes(breakpoints_, t0, t1, scene.camera.keys);
     for (const Object& object : scene.objects) {
@@ -89,13 +89,15 @@ FragmentMotion ShutterPathSampler::measure(std::span<const SurfacePoint> vertice
                 out.crosses_near = true;
                 continue;
             }
+            out.swept.expand(m.point.raster);
+            if (node.weight == 0.0) continue;
             const double speed = glm::length(m.raster_velocity);
             length += node.weight * speed;
             max_speed = std::max(max_speed, speed);
-            out.swept.expand(m.point.raster);
         }
         out.max_path_pixels = std::max(out.max_path_pixels, length);
     }
+    out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
     if (out.crosses_near) {
         out.swept = RasterBox::everything();
     } else {
@@ -104,10 +106,10 @@ FragmentMotion ShutterPathSampler::measure(std::span<const SurfacePoint> vertice
     return out;
 }
 
-int subframeCount(double max_path_pixels, int max_subframes, bool* capped) {
+int subframeCount(double pixels, int max_subframes, bool* capped) {
     const int limit = std::max(1, max_subframes);
     // A millionth of a pixel of slack so a path of exactly n pixels, computed with rounding, gives n.
-    const double wanted = std::ceil(max_path_pixels - 1e-6);
+    const double wanted = std::ceil(pixels - 1e-6);
     const bool over = !(wanted <= static_cast<double>(limit));  // also catches NaN and infinity
     if (capped) *capped = over;
     if (over) return limit;
@@ -121,8 +123,9 @@ SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const Rast
         ++plan.fragments;
         if (fragment.crosses_near) ++plan.near_crossings;
         plan.max_path_pixels = std::max(plan.max_path_pixels, fragment.max_path_pixels);
+        plan.max_sweep_pixels = std::max(plan.max_sweep_pixels, fragment.max_sweep_pixels);
     }
-    plan.count = subframeCount(plan.max_path_pixels, max_subframes, &plan.capped);
+    plan.count = subframeCount(plan.max_sweep_pixels, max_subframes, &plan.capped);
     return plan;
 }
 

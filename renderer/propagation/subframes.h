@@ -25,9 +25,12 @@ struct RasterBox {
 
 // How one fragment (a convex polygon of surface points) moves over the shutter.
 struct FragmentMotion {
-    RasterBox swept;               // conservative bound of every raster position the fragment takes
-    double max_path_pixels = 0.0;  // raster path length of its fastest vertex over the shutter
-    bool crosses_near = false;     // a vertex reaches the camera plane: swept is the whole plane
+    RasterBox swept;                // conservative bound of every raster position the fragment takes
+    double max_path_pixels = 0.0;   // longest raster path of a vertex over the shutter
+    // Peak raster speed of any vertex times the shutter length: equal subframes of this many keep every
+    // vertex within a pixel per step. It is never below max_path_pixels and equals it for uniform speed.
+    double max_sweep_pixels = 0.0;
+    bool crosses_near = false;      // a vertex reaches the camera plane: swept is the whole plane
 };
 
 // Samples the exact vertex paths over the shutter [t0, t1]. The shutter is cut at every camera,
@@ -44,9 +47,11 @@ public:
     // the near depth are left out (the point is not on the image there).
     double pathLength(const SurfacePoint& point) const;
 
-    // Path lengths and swept box of a fragment's vertices. The box holds every sampled position padded
-    // by (largest sampled speed) x (largest gap between samples): the exact path stays inside as long as
-    // the speed varies by less than a factor of two between neighbouring samples.
+    // Path lengths, peak speeds and swept box of a fragment's vertices. Speeds are taken at the Gauss
+    // nodes, which lie strictly inside the pieces (at a key the velocity jumps, and at t1 it may already
+    // belong to motion after the shutter). The box holds every sampled position padded by (largest sampled
+    // speed) x (largest gap between samples): the exact path stays inside as long as the speed varies by
+    // less than a factor of two between neighbouring samples.
     FragmentMotion measure(std::span<const SurfacePoint> vertices) const;
 
     const std::vector<double>& breakpoints() const { return breakpoints_; }  // t0, keys inside, t1
@@ -60,19 +65,20 @@ private:
     std::vector<double> breakpoints_;
     std::vector<Node> nodes_;  // in time order
     double max_gap_ = 0.0;
+    double duration_ = 0.0;
 };
 
 struct SubframePlan {
     int count = 1;                 // subframes for the tile
     bool capped = false;           // the motion asked for more than max_subframes: caller should warn
     double max_path_pixels = 0.0;  // longest vertex path among the fragments that touch the tile
+    double max_sweep_pixels = 0.0; // what the count is made from (see FragmentMotion)
     int fragments = 0;             // fragments whose swept box overlaps the tile
     int near_crossings = 0;        // of those, how many reach the camera plane during the shutter
 };
 
-// N = ceil(longest path in pixels) so the fastest vertex moves at most a pixel between subframes
-// (the corrected eq. 24, see docs/errata.md); at least 1, at most max_subframes.
-int subframeCount(double max_path_pixels, int max_subframes, bool* capped = nullptr);
+// N = ceil(pixels): at least 1, at most max_subframes (the corrected eq. 24, see docs/errata.md).
+int subframeCount(double pixels, int max_subframes, bool* capped = nullptr);
 
 // Plans the tile from the fragments whose swept box overlaps it.
 SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBox& tile, int max_subframes);
