@@ -25,9 +25,12 @@ RigidTransform evalTransform(const std::vector<TransformKey>& keys, double t) {
     const TransformKey& a = keys[i];
     if (w == 0.0) return {a.translate, glm::normalize(a.rotate), a.scale};
     const TransformKey& b = keys[i + 1];
-    glm::dquat qb = b.rotate;
-    if (glm::dot(a.rotate, qb) < 0.0) qb = -qb;  // shortest arc
-    return {glm::mix(a.translate, b.translate, w), glm::normalize(glm::slerp(a.rotate, qb, w)),
+    // Unit keys first: slerp of unnormalised quaternions is not the constant-rate arc that
+    // propagation differentiates.
+    const glm::dquat qa = glm::normalize(a.rotate);
+    glm::dquat qb = glm::normalize(b.rotate);
+    if (glm::dot(qa, qb) < 0.0) qb = -qb;  // shortest arc
+    return {glm::mix(a.translate, b.translate, w), glm::normalize(glm::slerp(qa, qb, w)),
             glm::mix(a.scale, b.scale, w)};
 }
 

@@ -1,0 +1,139 @@
+#include "renderer/propagation/subframes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clipblur {
+
+RasterBox RasterBox::everything() {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {glm::dvec2(-inf), glm::dvec2(inf)};
+}
+
+void RasterBox::expand(const glm::dvec2& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+}
+
+void RasterBox::pad(double margin) {
+    if (empty()) return;
+    lo -= margin;
+    hi += margin;
+}
+
+bool RasterBox::overlaps(const RasterBox& other) const {
+    if (empty() || other.empty()) return false;
+    return lo.x <= other.hi.x && other.lo.x <= hi.x && lo.y <= other.hi.y && other.lo.y <= hi.y;
+}
+
+namespace {
+
+void addKeyTimes(std::vector<double>& times, double t0, double t1, auto const& keys) {
+    for (const auto& key : keys)
+        if (key.time > t0 && key.time < t1) times.push_back(key.time);
+}
+
+}  // namespace
+
+ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
+                                       int intervals_per_piece, double near_depth)
+    : scene_(&scene), duration_(std::max(0.0, t1 - t0)) {
+    breakpoints_.push_back(t0);
+    addKeyTimes(breakpoints_, t0, t1, scene.camera.keys);
+    for (const Object& object : scene.objects) {
+        addKeyTimes(breakpoints_, t0, t1, object.transform);
+        addKeyTimes(breakpoints_, t0, t1, object.deformation);
+    }
+    std::sort(breakpoints_.begin(), breakpoints_.end());
+    breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
+    if (t1 > t0) breakpoints_.push_back(t1);
+
+    // 3-point Gauss-Legendre on [-1, 1]: exact for quintics, so |velocity| of smooth paths converges fast.
+    const double gl_x = std::sqrt(0.6);
+    const double gl_nodes[3] = {-gl_x, 0.0, gl_x};
+    const double gl_weights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    const int intervals = std::max(1, intervals_per_piece);
+    auto add = [&](double t, double weight) { nodes_.push_back({MotionSnapshot(scene, projection, t, near_depth), weight}); };
+    for (std::size_t p = 0; p + 1 < breakpoints_.size(); ++p) {
+        const double a = breakpoints_[p];
+        const double h = (breakpoints_[p + 1] - a) / intervals;
+        for (int i = 0; i < intervals; ++i) {
+            const double u = a + i * h;
+            add(u, 0.0);
+            for (int g = 0; g < 3; ++g) add(u + 0.5 * h * (1.0 + gl_nodes[g]), 0.5 * h * gl_weights[g]);
+        }
+    }
+    add(breakpoints_.back(), 0.0);
+    for (std::size_t i = 1; i < nodes_.size(); ++i)
+        max_gap_ = std::max(max_gap_, nodes_[i].snapshot.time - nodes_[i - 1].snapshot.time);
+}
+
+double ShutterPathSampler::pathLength(const SurfacePoint& point) const {
+    double length = 0.0;
+    for (const Node& node : nodes_) {
+        if (node.weight == 0.0) continue;
+        const ProjectedMotion m = projectMotion(node.snapshot, *scene_, point);
+        if (!m.point.behind) length += node.weight * glm::length(m.raster_velocity);
+    }
+    return length;
+}
+
+FragmentMotion ShutterPathSampler::measure(std::span<const SurfacePoint> vertices) const {
+    FragmentMotion out;
+    double max_speed = 0.0;
+    for (const SurfacePoint& vertex : vertices) {
+        double length = 0.0;
+        for (const Node& node : nodes_) {
+            const ProjectedMotion m = projectMotion(node.snapshot, *scene_, vertex);
+            if (m.point.behind) {
+                out.crosses_near = true;
+                continue;
+            }
+            out.swept.expand(m.point.raster);
+            if (node.weight == 0.0) continue;
+            const double speed = glm::length(m.raster_velocity);
+            length += node.weight * speed;
+            max_speed = std::max(max_speed, speed);
+        }
+        out.max_path_pixels = std::max(out.max_path_pixels, length);
+    }
+    out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
+    if (out.crosses_near) {
+        out.swept = RasterBox::everything();
+    } else {
+        out.swept.pad(max_speed * max_gap_);
+    }
+    return out;
+}
+
+int subframeCount(double pixels, int max_subframes, bool* capped) {
+    const int limit = std::max(1, max_subframes);
+    // A millionth of a pixel of slack so a path of exactly n pixels, computed with rounding, gives n.
+    const double wanted = std::ceil(pixels - 1e-6);
+    const bool over = !(wanted <= static_cast<double>(limit));  // also catches NaN and infinity
+    if (capped) *capped = over;
+    if (over) return limit;
+    return std::max(1, static_cast<int>(wanted));
+}
+
+SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBox& tile, int max_subframes) {
+    SubframePlan plan;
+    for (const FragmentMotion& fragment : fragments) {
+        if (!fragment.swept.overlaps(tile)) continue;
+        ++plan.fragments;
+        if (fragment.crosses_near) ++plan.near_crossings;
+        plan.max_path_pixels = std::max(plan.max_path_pixels, fragment.max_path_pixels);
+        plan.max_sweep_pixels = std::max(plan.max_sweep_pixels, fragment.max_sweep_pixels);
+    }
+    plan.count = subframeCount(plan.max_sweep_pixels, max_subframes, &plan.capped);
+    return plan;
+}
+
+std::vector<double> subframeTimes(double t0, double t1, int count) {
+    std::vector<double> times(static_cast<std::size_t>(std::max(1, count)));
+    const double n = static_cast<double>(times.size());
+    for (std::size_t k = 0; k < times.size(); ++k) times[k] = t0 + (static_cast<double>(k) + 0.5) / n * (t1 - t0);
+    return times;
+}
+
+}  // namespace clipblur

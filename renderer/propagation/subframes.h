@@ -1,0 +1,90 @@
+#pragma once
+
+#include <limits>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderer/propagation/surface_path.h"
+#include "scene/scene.h"
+
+namespace clipblur {
+
+// Axis-aligned raster-space box; default constructed it is empty.
+struct RasterBox {
+    glm::dvec2 lo{std::numeric_limits<double>::infinity()};
+    glm::dvec2 hi{-std::numeric_limits<double>::infinity()};
+
+    static RasterBox everything();
+    bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y); }
+    void expand(const glm::dvec2& p);
+    void pad(double margin);
+    bool overlaps(const RasterBox& other) const;  // closed boxes: touching counts
+};
+
+// How one fragment (a convex polygon of surface points) moves over the shutter.
+struct FragmentMotion {
+    RasterBox swept;                // conservative bound of every raster position the fragment takes
+    double max_path_pixels = 0.0;   // longest raster path of a vertex over the shutter
+    // Peak raster speed of any vertex times the shutter length: equal subframes of this many keep every
+    // vertex within a pixel per step. It is never below max_path_pixels and equals it for uniform speed.
+    double max_sweep_pixels = 0.0;
+    bool crosses_near = false;      // a vertex reaches the camera plane: swept is the whole plane
+};
+
+// Samples the exact vertex paths over the shutter [t0, t1]. The shutter is cut at every camera,
+// transform and deformation key inside it (velocity is only piecewise smooth), each piece into
+// `intervals_per_piece` equal intervals, and each interval gets a 3-point Gauss-Legendre rule for the
+// path length and its end points for the swept box. Snapshots are built once here and shared by every
+// fragment measured.
+class ShutterPathSampler {
+public:
+    ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
+                       int intervals_per_piece = 8, double near_depth = kDefaultNearDepth);
+
+    // Path length in pixels: integral of |d raster/dt| over the shutter. Parts of the path at or behind
+    // the near depth are left out (the point is not on the image there).
+    double pathLength(const SurfacePoint& point) const;
+
+    // Path lengths, peak speeds and swept box of a fragment's vertices. Speeds are taken at the Gauss
+    // nodes, which lie strictly inside the pieces (at a key the velocity jumps, and at t1 it may already
+    // belong to motion after the shutter). The box holds every sampled position padded by (largest sampled
+    // speed) x (largest gap between samples): the exact path stays inside as long as the speed varies by
+    // less than a factor of two between neighbouring samples.
+    FragmentMotion measure(std::span<const SurfacePoint> vertices) const;
+
+    const std::vector<double>& breakpoints() const { return breakpoints_; }  // t0, keys inside, t1
+
+private:
+    struct Node {
+        MotionSnapshot snapshot;
+        double weight;  // Gauss-Legendre weight x interval length; 0 for interval end points
+    };
+    const Scene* scene_;
+    std::vector<double> breakpoints_;
+    std::vector<Node> nodes_;  // in time order
+    double max_gap_ = 0.0;
+    double duration_ = 0.0;
+};
+
+struct SubframePlan {
+    int count = 1;                 // subframes for the tile
+    bool capped = false;           // the motion asked for more than max_subframes: caller should warn
+    double max_path_pixels = 0.0;  // longest vertex path among the fragments that touch the tile
+    double max_sweep_pixels = 0.0; // what the count is made from (see FragmentMotion)
+    int fragments = 0;             // fragments whose swept box overlaps the tile
+    int near_crossings = 0;        // of those, how many reach the camera plane during the shutter
+};
+
+// N = ceil(pixels): at least 1, at most max_subframes (the corrected eq. 24, see docs/errata.md).
+int subframeCount(double pixels, int max_subframes, bool* capped = nullptr);
+
+// Plans the tile from the fragments whose swept box overlaps it.
+SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBox& tile, int max_subframes);
+
+// Midpoint rule: subframe k of N at t0 + (k + 1/2)(t1 - t0)/N, each with weight 1/N.
+std::vector<double> subframeTimes(double t0, double t1, int count);
+inline double subframeWeight(int count) { return 1.0 / count; }
+
+}  // namespace clipblur

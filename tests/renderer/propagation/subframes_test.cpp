@@ -1,0 +1,313 @@
+#include "renderer/propagation/subframes.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "support/motion_scenes.h"
+
+namespace clipblur {
+namespace {
+
+Projection projectionOf(const Scene& scene) {
+    return Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+}
+
+const RasterBox kWholeFilm{{0, 0}, {640, 360}};
+
+// A triangle at depth `depth` whose points all move `pixels` raster pixels along x over [0, 1].
+Object slidingTriangle(const Projection& proj, double depth, double pixels) {
+    Object tri = testing::triangleObject({-1, -1, depth}, {1, -1, depth}, {0, 1, depth});
+    testing::addTransformKey(tri, 0.0, {0, 0, 0});
+    // Image right is -x (e2 = e3 x e1); a world shift dx at depth z moves k dx / z pixels.
+    testing::addTransformKey(tri, 1.0, {-pixels * depth / proj.pixelsPerUnit(), 0, 0});
+    return tri;
+}
+
+TEST(Subframes, StaticSceneNeedsOneSubframe) {
+    Scene scene = testing::stillCameraScene();
+    scene.objects.push_back(testing::triangleObject({-1, -1, 10}, {1, -1, 10}, {0, 1, 10}));
+    const ShutterPathSampler sampler(scene, projectionOf(scene), 0.0, 1.0);
+    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const FragmentMotion fm = sampler.measure(verts);
+    EXPECT_EQ(fm.max_path_pixels, 0.0);
+    EXPECT_FALSE(fm.crosses_near);
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 256);
+    EXPECT_EQ(plan.count, 1);
+    EXPECT_FALSE(plan.capped);
+    EXPECT_EQ(plan.fragments, 1);
+    // Nothing at all in the tile: also one subframe.
+    EXPECT_EQ(planSubframes({}, kWholeFilm, 256).count, 1);
+}
+
+TEST(Subframes, VertexMoving10Point3PixelsNeeds11) {
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    scene.objects.push_back(slidingTriangle(proj, 10.0, 10.3));
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const FragmentMotion fm = sampler.measure(verts);
+    // Constant velocity: Gauss-Legendre integrates it exactly, up to rounding.
+    EXPECT_NEAR(fm.max_path_pixels, 10.3, 1e-10);
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 256);
+    EXPECT_EQ(plan.count, 11);
+    EXPECT_FALSE(plan.capped);
+}
+
+TEST(Subframes, CurvedPathGetsMoreSubframesThanItsChord) {
+    // A quarter-turn roll of the camera: a point 100 px from the image centre travels an arc of
+    // 50 pi = 157.08 px, its chord is 100 sqrt(2) = 141.42 px and its endpoint speeds are equal.
+    Scene scene = testing::stillCameraScene();
+    scene.camera.keys.push_back({1.0, {0, 0, 0}, {0, 0, 1}, {1, 0, 0}});
+    const Projection proj = projectionOf(scene);
+    // 100 px from the centre, diagonally (right and down) at depth 10, so the quarter arc passes an
+    // axis and bulges past the box of its end points.
+    const double c = -100.0 / std::sqrt(2.0) / proj.pixelsPerUnit() * 10.0;
+    scene.objects.push_back(testing::triangleObject({c, c, 10}, {c + 1, c, 10}, {c, c + 1, 10}));
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const SurfacePoint corner{0, 0, {1, 0, 0}};
+    // Constant speed along the arc, so the quadrature is exact up to rounding.
+    EXPECT_NEAR(sampler.pathLength(corner), 50.0 * M_PI, 1e-9);
+    const FragmentMotion fm = sampler.measure(std::span(&corner, 1));
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 1024);
+    EXPECT_EQ(plan.count, 158);
+    const glm::dvec2 a = project(MotionSnapshot(scene, proj, 0.0), scene, corner).raster;
+    const glm::dvec2 b = project(MotionSnapshot(scene, proj, 1.0), scene, corner).raster;
+    const int chord_count = subframeCount(glm::length(b - a), 1024);
+    EXPECT_EQ(chord_count, 142);
+    EXPECT_GT(plan.count, chord_count);
+    // The swept box holds the whole arc, which bulges beyond the end points' box.
+    RasterBox ends;
+    ends.expand(a);
+    ends.expand(b);
+    int outside_ends = 0;
+    for (int i = 0; i <= 1000; ++i) {
+        const glm::dvec2 p = project(MotionSnapshot(scene, proj, i / 1000.0), scene, corner).raster;
+        EXPECT_TRUE(fm.swept.overlaps(RasterBox{p, p})) << i;
+        if (!ends.overlaps(RasterBox{p, p})) ++outside_ends;
+    }
+    EXPECT_GT(outside_ends, 100);
+}
+
+TEST(Subframes, PathThereAndBackCountsBothWays) {
+    // Keys at 0, 0.5, 1: out 8 px and back. The chord is zero; the path is 16 px.
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    Object tri = testing::triangleObject({-1, -1, 10}, {1, -1, 10}, {0, 1, 10});
+    testing::addTransformKey(tri, 0.0, {0, 0, 0});
+    testing::addTransformKey(tri, 0.5, {8.0 * 10.0 / proj.pixelsPerUnit(), 0, 0});
+    testing::addTransformKey(tri, 1.0, {0, 0, 0});
+    scene.objects.push_back(tri);
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    EXPECT_EQ(sampler.breakpoints(), (std::vector<double>{0.0, 0.5, 1.0}));
+    EXPECT_NEAR(sampler.pathLength({0, 0, {0.3, 0.3, 0.4}}), 16.0, 1e-10);
+}
+
+// Largest raster distance a vertex covers between consecutive subframes (and from the shutter ends
+// to the first and last subframe, which the midpoint rule leaves at half a step).
+double maxSubframeStep(const Scene& scene, const Projection& proj, std::span<const SurfacePoint> verts,
+                       double t0, double t1, int count) {
+    std::vector<double> times = subframeTimes(t0, t1, count);
+    double step = 0.0;
+    for (const SurfacePoint& v : verts) {
+        glm::dvec2 prev = project(MotionSnapshot(scene, proj, times[0]), scene, v).raster;
+        const glm::dvec2 open = project(MotionSnapshot(scene, proj, t0), scene, v).raster;
+        step = std::max(step, 2.0 * glm::length(prev - open));
+        for (std::size_t k = 1; k < times.size(); ++k) {
+            const glm::dvec2 p = project(MotionSnapshot(scene, proj, times[k]), scene, v).raster;
+            step = std::max(step, glm::length(p - prev));
+            prev = p;
+        }
+        const glm::dvec2 close = project(MotionSnapshot(scene, proj, t1), scene, v).raster;
+        step = std::max(step, 2.0 * glm::length(close - prev));
+    }
+    return step;
+}
+
+TEST(Subframes, NonUniformSpeedIsPlannedFromPeakSpeed) {
+    // Still for the first half of the shutter, then 10 px in the second half. The path is 10 px, but ten
+    // equal subframes would put two pixels between the moving ones; the count follows the peak speed
+    // (20 px/frame x 1 frame) so every step stays within a pixel.
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    Object tri = testing::triangleObject({-1, -1, 10}, {1, -1, 10}, {0, 1, 10});
+    testing::addTransformKey(tri, 0.0, {0, 0, 0});
+    testing::addTransformKey(tri, 0.5, {0, 0, 0});
+    testing::addTransformKey(tri, 1.0, {-10.0 * 10.0 / proj.pixelsPerUnit(), 0, 0});
+    scene.objects.push_back(tri);
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const SurfacePoint v{0, 0, {0.2, 0.5, 0.3}};
+    const FragmentMotion fm = sampler.measure(std::span(&v, 1));
+    EXPECT_NEAR(fm.max_path_pixels, 10.0, 1e-10);
+    EXPECT_NEAR(fm.max_sweep_pixels, 20.0, 1e-10);
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 256);
+    EXPECT_EQ(plan.count, 20);
+    EXPECT_LE(maxSubframeStep(scene, proj, std::span(&v, 1), 0.0, 1.0, plan.count), 1.0 + 1e-9);
+    EXPECT_NEAR(maxSubframeStep(scene, proj, std::span(&v, 1), 0.0, 1.0, 10), 2.0, 1e-9);
+}
+
+TEST(Subframes, MotionAfterTheShutterDoesNotCount) {
+    // Keys at the shutter close and later: still during [0, 1], fast afterwards.
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    Object tri = testing::triangleObject({-1, -1, 10}, {1, -1, 10}, {0, 1, 10});
+    testing::addTransformKey(tri, 1.0, {0, 0, 0});
+    testing::addTransformKey(tri, 2.0, {5, 0, 0});
+    scene.objects.push_back(tri);
+    const SurfacePoint v{0, 0, {1, 0, 0}};
+    const FragmentMotion fm = ShutterPathSampler(scene, proj, 0.0, 1.0).measure(std::span(&v, 1));
+    EXPECT_EQ(fm.max_sweep_pixels, 0.0);
+    EXPECT_EQ(planSubframes(std::span(&fm, 1), kWholeFilm, 256).count, 1);
+}
+
+TEST(Subframes, PlannedCountKeepsRandomMotionWithinAPixelPerStep) {
+    // Property over random camera and object motion (curved paths, keys inside the shutter, deformation):
+    // with the planned count, no vertex moves more than a pixel between subframes. The peak speed is
+    // sampled at Gauss nodes, not maximised exactly, so allow 2% over a pixel.
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+        const Scene scene = testing::randomMovingScene(seed);
+        const Projection proj = projectionOf(scene);
+        const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+        for (std::uint32_t obj = 0; obj < 3; ++obj) {
+            std::vector<SurfacePoint> verts;
+            for (int j = 0; j < 3; ++j) {
+                glm::dvec3 b(u(rng), u(rng), u(rng));
+                verts.push_back({obj, obj, b / (b.x + b.y + b.z)});
+            }
+            const FragmentMotion fm = sampler.measure(verts);
+            const SubframePlan plan = planSubframes(std::span(&fm, 1), RasterBox::everything(), 1 << 20);
+            ASSERT_FALSE(plan.capped);
+            EXPECT_GT(plan.count, 1);
+            EXPECT_LE(maxSubframeStep(scene, proj, verts, 0.0, 1.0, plan.count), 1.02) << "seed " << seed;
+        }
+    }
+}
+
+TEST(Subframes, CapIsHonouredAndFlagged) {
+    bool capped = false;
+    EXPECT_EQ(subframeCount(1000.2, 64, &capped), 64);
+    EXPECT_TRUE(capped);
+    EXPECT_EQ(subframeCount(64.0, 64, &capped), 64);
+    EXPECT_FALSE(capped);
+    EXPECT_EQ(subframeCount(std::numeric_limits<double>::infinity(), 64, &capped), 64);
+    EXPECT_TRUE(capped);
+
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    scene.objects.push_back(slidingTriangle(proj, 10.0, 300.0));
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const SurfacePoint v{0, 0, {1, 0, 0}};
+    const FragmentMotion fm = sampler.measure(std::span(&v, 1));
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 128);
+    EXPECT_EQ(plan.count, 128);
+    EXPECT_TRUE(plan.capped);
+    EXPECT_NEAR(plan.max_path_pixels, 300.0, 1e-9);
+}
+
+TEST(Subframes, PrintedEquation24LetsTheFastestVertexStrobe) {
+    // Two vertices: one at depth 100 moving 1 px per frame, one at depth 10 moving 10 px per frame. The
+    // printed eq. 24, df = max_v sqrt(a_p) / |p'_v|, takes the slow vertex: df = 1 frame, one subframe,
+    // and the fast vertex jumps 10 px between subframes. The minimum (our count) keeps every vertex
+    // within a pixel per subframe.
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    scene.objects.push_back(slidingTriangle(proj, 100.0, 1.0));
+    scene.objects.push_back(slidingTriangle(proj, 10.0, 10.0));
+    // Image-plane speeds by construction: pixels per frame / pixels per unit.
+    const double speeds[2] = {1.0 / proj.pixelsPerUnit(), 10.0 / proj.pixelsPerUnit()};
+    const double sqrt_ap = std::sqrt(proj.pixelArea());
+    const double df_printed = std::max(sqrt_ap / speeds[0], sqrt_ap / speeds[1]);
+    const double df_corrected = std::min(sqrt_ap / speeds[0], sqrt_ap / speeds[1]);
+    EXPECT_NEAR(df_printed, 1.0, 1e-12);
+    EXPECT_NEAR(df_corrected, 0.1, 1e-12);
+
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const SurfacePoint verts[2] = {{0, 0, {1, 0, 0}}, {1, 0, {1, 0, 0}}};
+    const FragmentMotion fm = sampler.measure(verts);
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 256);
+    EXPECT_EQ(plan.count, 10);
+
+    EXPECT_GT(maxSubframeStep(scene, proj, verts, 0.0, 1.0, static_cast<int>(std::ceil(1.0 / df_printed))), 9.0);
+    EXPECT_LE(maxSubframeStep(scene, proj, verts, 0.0, 1.0, plan.count), 1.0 + 1e-9);
+}
+
+TEST(Subframes, TimesAreShutterMidpointsWithEqualWeights) {
+    const std::vector<double> t = subframeTimes(2.25, 2.75, 4);
+    ASSERT_EQ(t.size(), 4u);
+    EXPECT_DOUBLE_EQ(t[0], 2.25 + 0.0625);
+    EXPECT_DOUBLE_EQ(t[1], 2.25 + 0.1875);
+    EXPECT_DOUBLE_EQ(t[3], 2.75 - 0.0625);
+    EXPECT_DOUBLE_EQ(subframeWeight(4), 0.25);
+    EXPECT_EQ(subframeTimes(0.0, 1.0, 1), std::vector<double>{0.5});
+    // The midpoint rule integrates any linear function of time exactly: the mean of the times is the
+    // shutter centre.
+    double mean = 0.0;
+    for (double x : subframeTimes(0.0, 1.0, 7)) mean += x * subframeWeight(7);
+    EXPECT_NEAR(mean, 0.5, 1e-15);
+}
+
+TEST(Subframes, SweptBoxHoldsDenselySampledPaths) {
+    // Property: every position of every vertex, sampled at 2001 times across the shutter, lies in the
+    // fragment's swept box. Fragments are random sub-triangles of random moving scenes.
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+        const Scene scene = testing::randomMovingScene(seed);
+        const Projection proj = projectionOf(scene);
+        const ShutterPathSampler sampler(scene, proj, 0.0, 1.0, 4);
+        std::vector<MotionSnapshot> dense;
+        for (int i = 0; i <= 2000; ++i) dense.emplace_back(scene, proj, i / 2000.0);
+        for (std::uint32_t obj = 0; obj < 3; ++obj) {
+            std::vector<SurfacePoint> verts;
+            for (int j = 0; j < 3; ++j) {
+                glm::dvec3 b(u(rng), u(rng), u(rng));
+                verts.push_back({obj, obj, b / (b.x + b.y + b.z)});
+            }
+            const FragmentMotion fm = sampler.measure(verts);
+            ASSERT_FALSE(fm.crosses_near);
+            for (const MotionSnapshot& s : dense) {
+                for (const SurfacePoint& v : verts) {
+                    const glm::dvec2 p = project(s, scene, v).raster;
+                    ASSERT_TRUE(fm.swept.overlaps(RasterBox{p, p})) << "seed " << seed << " t " << s.time;
+                }
+            }
+        }
+    }
+}
+
+TEST(Subframes, TilesIgnoreFragmentsThatNeverReachThem) {
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    scene.objects.push_back(slidingTriangle(proj, 10.0, 40.0));
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const FragmentMotion fm = sampler.measure(verts);
+    const RasterBox far_tile{{0, 0}, {32, 32}};
+    const SubframePlan far_plan = planSubframes(std::span(&fm, 1), far_tile, 256);
+    EXPECT_EQ(far_plan.fragments, 0);
+    EXPECT_EQ(far_plan.count, 1);
+    const RasterBox centre_tile{{320, 160}, {352, 192}};
+    EXPECT_EQ(planSubframes(std::span(&fm, 1), centre_tile, 256).count, 40);
+}
+
+TEST(Subframes, CrossingTheCameraPlaneIsFlagged) {
+    // The triangle flies from 5 units in front of the camera to 5 behind it.
+    Scene scene = testing::stillCameraScene();
+    Object tri = testing::triangleObject({-1, -1, 5}, {1, -1, 5}, {0, 1, 5});
+    testing::addTransformKey(tri, 0.0, {0, 0, 0});
+    testing::addTransformKey(tri, 1.0, {0, 0, -10});
+    scene.objects.push_back(tri);
+    const ShutterPathSampler sampler(scene, projectionOf(scene), 0.0, 1.0);
+    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const FragmentMotion fm = sampler.measure(verts);
+    EXPECT_TRUE(fm.crosses_near);
+    EXPECT_TRUE(fm.swept.overlaps(RasterBox{{1e9, 1e9}, {1e9, 1e9}}));
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), RasterBox{{0, 0}, {32, 32}}, 256);
+    EXPECT_EQ(plan.near_crossings, 1);
+}
+
+}  // namespace
+}  // namespace clipblur
