@@ -68,7 +68,7 @@ ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& pro
         max_gap_ = std::max(max_gap_, nodes_[i].snapshot.time - nodes_[i - 1].snapshot.time);
 }
 
-double ShutterPathSampler::pathLength(const SurfacePoint& point) const {
+double ShutterPathSampler::pathLength(const MeshPoint& point) const {
     double length = 0.0;
     for (const Node& node : nodes_) {
         if (node.weight == 0.0) continue;
@@ -78,10 +78,10 @@ double ShutterPathSampler::pathLength(const SurfacePoint& point) const {
     return length;
 }
 
-FragmentMotion ShutterPathSampler::measure(std::span<const SurfacePoint> vertices) const {
+FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) const {
     FragmentMotion out;
     double max_speed = 0.0;
-    for (const SurfacePoint& vertex : vertices) {
+    for (const MeshPoint& vertex : vertices) {
         double length = 0.0;
         for (const Node& node : nodes_) {
             const ProjectedMotion m = projectMotion(node.snapshot, *scene_, vertex);

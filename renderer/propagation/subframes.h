@@ -45,14 +45,14 @@ public:
 
     // Path length in pixels: integral of |d raster/dt| over the shutter. Parts of the path at or behind
     // the near depth are left out (the point is not on the image there).
-    double pathLength(const SurfacePoint& point) const;
+    double pathLength(const MeshPoint& point) const;
 
     // Path lengths, peak speeds and swept box of a fragment's vertices. Speeds are taken at the Gauss
     // nodes, which lie strictly inside the pieces (at a key the velocity jumps, and at t1 it may already
     // belong to motion after the shutter). The box holds every sampled position padded by (largest sampled
     // speed) x (largest gap between samples): the exact path stays inside as long as the speed varies by
     // less than a factor of two between neighbouring samples.
-    FragmentMotion measure(std::span<const SurfacePoint> vertices) const;
+    FragmentMotion measure(std::span<const MeshPoint> vertices) const;
 
     const std::vector<double>& breakpoints() const { return breakpoints_; }  // t0, keys inside, t1
 

@@ -50,7 +50,7 @@ ObjectMotionState objectStateAt(const Object& object, double t) {
 }
 
 // Object-space position of the surface point and its time derivative.
-void objectSpacePoint(const Object& object, const ObjectMotionState& state, const SurfacePoint& point,
+void objectSpacePoint(const Object& object, const ObjectMotionState& state, const MeshPoint& point,
                       glm::dvec3& position, glm::dvec3& rate) {
     const auto& tri = object.mesh.triangles[point.triangle];
     position = glm::dvec3(0.0);
@@ -110,7 +110,7 @@ ProjectedPoint projectRelative(const MotionSnapshot& s, const glm::dvec3& world,
 
 }  // namespace
 
-ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const SurfacePoint& point) {
+ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];
     glm::dvec3 local;
@@ -121,7 +121,7 @@ ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const
     return projectRelative(snapshot, world, world - snapshot.camera.position);
 }
 
-ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const SurfacePoint& point) {
+ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];
     glm::dvec3 local;

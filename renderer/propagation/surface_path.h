@@ -14,7 +14,7 @@ namespace clipblur {
 
 // A point fixed on a source mesh triangle. Fragment vertices produced by clipping at shutter open or
 // close are all of this form; b is a convex combination (sums to 1).
-struct SurfacePoint {
+struct MeshPoint {
     std::uint32_t object = 0;
     std::uint32_t triangle = 0;
     glm::dvec3 b{1.0 / 3.0};
@@ -71,10 +71,10 @@ struct ProjectedMotion {
 };
 
 // Exact position: the propagated 3D surface point projected by the camera at the snapshot's time.
-ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const SurfacePoint& point);
+ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point);
 
 // Position plus analytic velocity. With d = r - rc, e_i' = W x e_i and g = d' + d x W, the image-plane
 // coordinates p_i = e_i.d / e3.d have p_i' = (e_i.g - p_i e3.g) / (e3.d).
-ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const SurfacePoint& point);
+ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point);
 
 }  // namespace clipblur

@@ -29,7 +29,7 @@ TEST(Subframes, StaticSceneNeedsOneSubframe) {
     Scene scene = testing::stillCameraScene();
     scene.objects.push_back(testing::triangleObject({-1, -1, 10}, {1, -1, 10}, {0, 1, 10}));
     const ShutterPathSampler sampler(scene, projectionOf(scene), 0.0, 1.0);
-    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
     const FragmentMotion fm = sampler.measure(verts);
     EXPECT_EQ(fm.max_path_pixels, 0.0);
     EXPECT_FALSE(fm.crosses_near);
@@ -46,7 +46,7 @@ TEST(Subframes, VertexMoving10Point3PixelsNeeds11) {
     const Projection proj = projectionOf(scene);
     scene.objects.push_back(slidingTriangle(proj, 10.0, 10.3));
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
-    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
     const FragmentMotion fm = sampler.measure(verts);
     // Constant velocity: Gauss-Legendre integrates it exactly, up to rounding.
     EXPECT_NEAR(fm.max_path_pixels, 10.3, 1e-10);
@@ -66,7 +66,7 @@ TEST(Subframes, CurvedPathGetsMoreSubframesThanItsChord) {
     const double c = -100.0 / std::sqrt(2.0) / proj.pixelsPerUnit() * 10.0;
     scene.objects.push_back(testing::triangleObject({c, c, 10}, {c + 1, c, 10}, {c, c + 1, 10}));
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
-    const SurfacePoint corner{0, 0, {1, 0, 0}};
+    const MeshPoint corner{0, 0, {1, 0, 0}};
     // Constant speed along the arc, so the quadrature is exact up to rounding.
     EXPECT_NEAR(sampler.pathLength(corner), 50.0 * M_PI, 1e-9);
     const FragmentMotion fm = sampler.measure(std::span(&corner, 1));
@@ -106,11 +106,11 @@ TEST(Subframes, PathThereAndBackCountsBothWays) {
 
 // Largest raster distance a vertex covers between consecutive subframes (and from the shutter ends
 // to the first and last subframe, which the midpoint rule leaves at half a step).
-double maxSubframeStep(const Scene& scene, const Projection& proj, std::span<const SurfacePoint> verts,
+double maxSubframeStep(const Scene& scene, const Projection& proj, std::span<const MeshPoint> verts,
                        double t0, double t1, int count) {
     std::vector<double> times = subframeTimes(t0, t1, count);
     double step = 0.0;
-    for (const SurfacePoint& v : verts) {
+    for (const MeshPoint& v : verts) {
         glm::dvec2 prev = project(MotionSnapshot(scene, proj, times[0]), scene, v).raster;
         const glm::dvec2 open = project(MotionSnapshot(scene, proj, t0), scene, v).raster;
         step = std::max(step, 2.0 * glm::length(prev - open));
@@ -137,7 +137,7 @@ TEST(Subframes, NonUniformSpeedIsPlannedFromPeakSpeed) {
     testing::addTransformKey(tri, 1.0, {-10.0 * 10.0 / proj.pixelsPerUnit(), 0, 0});
     scene.objects.push_back(tri);
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
-    const SurfacePoint v{0, 0, {0.2, 0.5, 0.3}};
+    const MeshPoint v{0, 0, {0.2, 0.5, 0.3}};
     const FragmentMotion fm = sampler.measure(std::span(&v, 1));
     EXPECT_NEAR(fm.max_path_pixels, 10.0, 1e-10);
     EXPECT_NEAR(fm.max_sweep_pixels, 20.0, 1e-10);
@@ -155,7 +155,7 @@ TEST(Subframes, MotionAfterTheShutterDoesNotCount) {
     testing::addTransformKey(tri, 1.0, {0, 0, 0});
     testing::addTransformKey(tri, 2.0, {5, 0, 0});
     scene.objects.push_back(tri);
-    const SurfacePoint v{0, 0, {1, 0, 0}};
+    const MeshPoint v{0, 0, {1, 0, 0}};
     const FragmentMotion fm = ShutterPathSampler(scene, proj, 0.0, 1.0).measure(std::span(&v, 1));
     EXPECT_EQ(fm.max_sweep_pixels, 0.0);
     EXPECT_EQ(planSubframes(std::span(&fm, 1), kWholeFilm, 256).count, 1);
@@ -172,7 +172,7 @@ TEST(Subframes, PlannedCountKeepsRandomMotionWithinAPixelPerStep) {
         const Projection proj = projectionOf(scene);
         const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
         for (std::uint32_t obj = 0; obj < 3; ++obj) {
-            std::vector<SurfacePoint> verts;
+            std::vector<MeshPoint> verts;
             for (int j = 0; j < 3; ++j) {
                 glm::dvec3 b(u(rng), u(rng), u(rng));
                 verts.push_back({obj, obj, b / (b.x + b.y + b.z)});
@@ -199,7 +199,7 @@ TEST(Subframes, CapIsHonouredAndFlagged) {
     const Projection proj = projectionOf(scene);
     scene.objects.push_back(slidingTriangle(proj, 10.0, 300.0));
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
-    const SurfacePoint v{0, 0, {1, 0, 0}};
+    const MeshPoint v{0, 0, {1, 0, 0}};
     const FragmentMotion fm = sampler.measure(std::span(&v, 1));
     const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 128);
     EXPECT_EQ(plan.count, 128);
@@ -225,7 +225,7 @@ TEST(Subframes, PrintedEquation24LetsTheFastestVertexStrobe) {
     EXPECT_NEAR(df_corrected, 0.1, 1e-12);
 
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
-    const SurfacePoint verts[2] = {{0, 0, {1, 0, 0}}, {1, 0, {1, 0, 0}}};
+    const MeshPoint verts[2] = {{0, 0, {1, 0, 0}}, {1, 0, {1, 0, 0}}};
     const FragmentMotion fm = sampler.measure(verts);
     const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 256);
     EXPECT_EQ(plan.count, 10);
@@ -261,7 +261,7 @@ TEST(Subframes, SweptBoxHoldsDenselySampledPaths) {
         std::vector<MotionSnapshot> dense;
         for (int i = 0; i <= 2000; ++i) dense.emplace_back(scene, proj, i / 2000.0);
         for (std::uint32_t obj = 0; obj < 3; ++obj) {
-            std::vector<SurfacePoint> verts;
+            std::vector<MeshPoint> verts;
             for (int j = 0; j < 3; ++j) {
                 glm::dvec3 b(u(rng), u(rng), u(rng));
                 verts.push_back({obj, obj, b / (b.x + b.y + b.z)});
@@ -269,7 +269,7 @@ TEST(Subframes, SweptBoxHoldsDenselySampledPaths) {
             const FragmentMotion fm = sampler.measure(verts);
             ASSERT_FALSE(fm.crosses_near);
             for (const MotionSnapshot& s : dense) {
-                for (const SurfacePoint& v : verts) {
+                for (const MeshPoint& v : verts) {
                     const glm::dvec2 p = project(s, scene, v).raster;
                     ASSERT_TRUE(fm.swept.overlaps(RasterBox{p, p})) << "seed " << seed << " t " << s.time;
                 }
@@ -283,7 +283,7 @@ TEST(Subframes, TilesIgnoreFragmentsThatNeverReachThem) {
     const Projection proj = projectionOf(scene);
     scene.objects.push_back(slidingTriangle(proj, 10.0, 40.0));
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
-    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
     const FragmentMotion fm = sampler.measure(verts);
     const RasterBox far_tile{{0, 0}, {32, 32}};
     const SubframePlan far_plan = planSubframes(std::span(&fm, 1), far_tile, 256);
@@ -301,7 +301,7 @@ TEST(Subframes, CrossingTheCameraPlaneIsFlagged) {
     testing::addTransformKey(tri, 1.0, {0, 0, -10});
     scene.objects.push_back(tri);
     const ShutterPathSampler sampler(scene, projectionOf(scene), 0.0, 1.0);
-    const SurfacePoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
     const FragmentMotion fm = sampler.measure(verts);
     EXPECT_TRUE(fm.crosses_near);
     EXPECT_TRUE(fm.swept.overlaps(RasterBox{{1e9, 1e9}, {1e9, 1e9}}));

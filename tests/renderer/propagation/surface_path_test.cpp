@@ -34,7 +34,7 @@ TEST(SurfacePath, MatchesReferenceProjectionOfPropagatedPoint) {
         for (int i = 0; i < 20; ++i) {
             const double t = time(rng);
             const MotionSnapshot snapshot(scene, proj, t);
-            const SurfacePoint sp{static_cast<std::uint32_t>(i % 3), static_cast<std::uint32_t>(i % 3),
+            const MeshPoint sp{static_cast<std::uint32_t>(i % 3), static_cast<std::uint32_t>(i % 3),
                                   randomBarycentric(rng)};
             const ProjectedPoint got = project(snapshot, scene, sp);
             const auto want = referenceProjection(scene, proj, sp.object, sp.triangle, sp.b, t);
@@ -75,7 +75,7 @@ TEST(SurfacePath, VelocityMatchesCentralDifferences) {
         for (int i = 0; i < 30; ++i) {
             const double t = time(rng);
             if (nearKey(t)) continue;  // velocity jumps at keys; differences straddling one are meaningless
-            const SurfacePoint sp{static_cast<std::uint32_t>(i % 3), static_cast<std::uint32_t>((i / 3) % 3),
+            const MeshPoint sp{static_cast<std::uint32_t>(i % 3), static_cast<std::uint32_t>((i / 3) % 3),
                                   randomBarycentric(rng)};
             const ProjectedMotion got = projectMotion(MotionSnapshot(scene, proj, t), scene, sp);
             const auto plus = referenceProjection(scene, proj, sp.object, sp.triangle, sp.b, t + h);
