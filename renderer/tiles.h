@@ -20,6 +20,7 @@ public:
     TileGrid(int width, int height, int tile_size);
 
     int count() const { return columns_ * rows_; }
+    int tileSize() const { return size_; }
     int columns() const { return columns_; }
     int rows() const { return rows_; }
     Tile tile(int index) const;

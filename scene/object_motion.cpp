@@ -44,6 +44,22 @@ glm::dvec3 evalVertex(const Object& object, std::uint32_t index, double t) {
     return evalTransform(object.transform, t).apply(p);
 }
 
+void evalVertices(const Object& object, double t, std::vector<glm::dvec3>& out) {
+    const RigidTransform transform = evalTransform(object.transform, t);
+    const std::size_t n = object.mesh.positions.size();
+    out.resize(n);
+    if (object.deformation.empty()) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = transform.apply(object.mesh.positions[i]);
+        return;
+    }
+    const auto [k, w] = bracket(object.deformation, t);
+    const auto& a = object.deformation[k].positions;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec3 p = w == 0.0 ? a[i] : glm::mix(a[i], object.deformation[k + 1].positions[i], w);
+        out[i] = transform.apply(p);
+    }
+}
+
 namespace {
 
 template <typename Key, typename Same>

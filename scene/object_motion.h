@@ -22,6 +22,9 @@ RigidTransform evalTransform(const std::vector<TransformKey>& keys, double t);
 // linearly in object space, then the transform at t applied.
 glm::dvec3 evalVertex(const Object& object, std::uint32_t index, double t);
 
+// World positions of every vertex of `object` at time t (one transform evaluation for the whole mesh).
+void evalVertices(const Object& object, double t, std::vector<glm::dvec3>& out);
+
 // True when the object has no motion inside [t0, t1] (no keys differ there).
 bool isStatic(const Object& object, double t0, double t1);
 

@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "renderer/tiles.h"
+#include "renderer/visibility/embree_scene.h"
+#include "renderer/visibility/frame_geometry.h"
+#include "scene/scene.h"
+
+namespace clipblur {
+
+// Triangles sharing a vertex with a given triangle, per object (vertex -> triangles in CSR form).
+class MeshAdjacency {
+public:
+    explicit MeshAdjacency(const Scene& scene);
+
+    template <typename F>
+    void forEachNeighbour(std::uint32_t object, std::uint32_t triangle, F&& f) const {
+        const auto& o = objects_[object];
+        for (std::uint32_t v : (*meshes_)[object].triangles[triangle])
+            for (std::uint32_t i = o.offsets[v]; i < o.offsets[v + 1]; ++i) f(o.items[i]);
+    }
+
+private:
+    struct PerObject {
+        std::vector<std::uint32_t> offsets;
+        std::vector<std::uint32_t> items;
+    };
+    std::vector<PerObject> objects_;
+    const std::vector<Mesh>* meshes_ = nullptr;
+    std::vector<Mesh> mesh_refs_;
+};
+
+struct CandidateStats {
+    long long rays = 0;
+    long long hit_triangles = 0;  // distinct mesh triangles hit
+    long long candidates = 0;     // screen triangles handed to the clipper
+    long long binned = 0;         // screen triangles whose box overlaps the tile (the exhaustive set)
+};
+
+struct CandidateScratch {
+    std::vector<std::uint64_t> hits;
+    std::vector<std::uint64_t> ring;
+};
+
+// The screen triangles of `tile` that the clipper must see at the frame's time.
+//
+// rays_per_side == 0: every triangle whose bounding box overlaps the tile (exact, the oracle).
+// Otherwise Embree traces rays_per_side^2 rays per pixel over the tile and a one-pixel border; the
+// candidates are the triangles hit, their one-ring neighbours in the mesh (a triangle visible only
+// between rays is usually next to one that was hit) and every triangle whose bounding box is thinner
+// than two ray spacings (it may fit between rays). What this can still miss is a large triangle seen
+// only through a gap narrower than the ray spacing and not adjacent to a hit; docs/design.md measures it.
+void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const MeshAdjacency& adjacency,
+                    const Projection& projection, const Tile& tile, int tile_index, int rays_per_side,
+                    CandidateScratch& scratch, std::vector<std::uint32_t>& out, CandidateStats& stats);
+
+}  // namespace clipblur
