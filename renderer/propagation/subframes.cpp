@@ -28,7 +28,7 @@ bool RasterBox::overlaps(const RasterBox& other) const {
 
 namespace {
 
-void addKeyTimes(std::vector<double>& times, double t0, double t1, auto const& keys) {
+void addKeyTimes(std::vector<double>& times, double t0, double t1, const auto& keys) {
     for (const auto& key : keys)
         if (key.time > t0 && key.time < t1) times.push_back(key.time);
 }

@@ -49,27 +49,28 @@ ObjectMotionState objectStateAt(const Object& object, double t) {
     return state;
 }
 
-// Object-space position of the surface point and its time derivative.
-void objectSpacePoint(const Object& object, const ObjectMotionState& state, const MeshPoint& point,
-                      glm::dvec3& position, glm::dvec3& rate) {
+// Object-space position of the surface point and, when `rate` is given, its time derivative.
+glm::dvec3 objectSpacePoint(const Object& object, const ObjectMotionState& state, const MeshPoint& point,
+                            glm::dvec3* rate) {
     const auto& tri = object.mesh.triangles[point.triangle];
-    position = glm::dvec3(0.0);
-    rate = glm::dvec3(0.0);
+    glm::dvec3 position(0.0);
+    if (rate) *rate = glm::dvec3(0.0);
     if (object.deformation.empty()) {
         for (int j = 0; j < 3; ++j) position += point.b[j] * object.mesh.positions[tri[j]];
-        return;
+        return position;
     }
     const auto& k0 = object.deformation[state.deform_key].positions;
     if (state.deform_weight == 0.0 && state.deform_rate == 0.0) {
         for (int j = 0; j < 3; ++j) position += point.b[j] * k0[tri[j]];
-        return;
+        return position;
     }
     const auto& k1 = object.deformation[state.deform_key + 1].positions;
-    for (int j = 0; j < 3; ++j) {
-        position += point.b[j] * glm::mix(k0[tri[j]], k1[tri[j]], state.deform_weight);
-        rate += point.b[j] * (k1[tri[j]] - k0[tri[j]]);
+    for (int j = 0; j < 3; ++j) position += point.b[j] * glm::mix(k0[tri[j]], k1[tri[j]], state.deform_weight);
+    if (rate) {
+        for (int j = 0; j < 3; ++j) *rate += point.b[j] * (k1[tri[j]] - k0[tri[j]]);
+        *rate *= state.deform_rate;
     }
-    rate *= state.deform_rate;
+    return position;
 }
 
 }  // namespace
@@ -113,9 +114,7 @@ ProjectedPoint projectRelative(const MotionSnapshot& s, const glm::dvec3& world,
 ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];
-    glm::dvec3 local;
-    glm::dvec3 local_rate;
-    objectSpacePoint(object, state, point, local, local_rate);
+    const glm::dvec3 local = objectSpacePoint(object, state, point, nullptr);
     // Affine transform of a convex combination = convex combination of transformed vertices.
     const glm::dvec3 world = state.transform.apply(local);
     return projectRelative(snapshot, world, world - snapshot.camera.position);
@@ -124,9 +123,8 @@ ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const
 ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];
-    glm::dvec3 local;
     glm::dvec3 local_rate;
-    objectSpacePoint(object, state, point, local, local_rate);
+    const glm::dvec3 local = objectSpacePoint(object, state, point, &local_rate);
     const RigidTransform& xf = state.transform;
     const glm::dvec3 rotated = xf.rotate * (xf.scale * local);
     const glm::dvec3 world = xf.translate + rotated;
