@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "renderer/clipped/clipped_renderer.h"
 #include "renderer/stochastic/stochastic_renderer.h"
 #include "scene/error.h"
 
@@ -26,12 +27,12 @@ RenderResult renderFrame(const RenderJob& job, int frame, const RenderCallbacks&
         case Method::Stochastic:
             return renderStochastic(job, frame, callbacks);
         case Method::Clipped:
-        case Method::Accumulation:
         case Method::Frame0Only:
-            break;
+            return renderClipped(job, frame, callbacks);
+        case Method::Accumulation:
+            return renderAccumulation(job, frame, callbacks);
     }
-    throw Error(ExitCode::Render, std::string("method '") + methodName(job.render.method) +
-                                      "' is not available in this build");
+    throw Error(ExitCode::Internal, std::string("unknown method ") + methodName(job.render.method));
 }
 
 }  // namespace clipblur

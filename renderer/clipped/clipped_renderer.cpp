@@ -1,0 +1,280 @@
+#include "renderer/clipped/clipped_renderer.h"
+
+#include <atomic>
+#include <chrono>
+#include <limits>
+#include <mutex>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "renderer/clipped/frame_fragments.h"
+#include "renderer/clipped/motion_plan.h"
+#include "renderer/clipped/subframe_reclip.h"
+#include "renderer/visibility/candidates.h"
+#include "renderer/visibility/embree_scene.h"
+#include "scene/error.h"
+
+namespace clipblur {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::vector<std::string> channelNames(const OutputSettings& out) {
+    std::vector<std::string> names{"R", "G", "B", "A"};
+    if (out.aov_depth) names.push_back("Z");
+    if (out.aov_coverage) names.push_back("coverage");
+    if (out.aov_motion) {
+        names.push_back("motion.x");
+        names.push_back("motion.y");
+    }
+    return names;
+}
+
+// Writes one pixel's averaged sums (colour, covered area, depth and motion sums) over the background.
+struct ImageWriter {
+    Image& image;
+    glm::dvec3 background;
+    Image::Channel* z;
+    Image::Channel* coverage;
+    Image::Channel* mx;
+    Image::Channel* my;
+
+    ImageWriter(Image& img, const glm::dvec3& bg)
+        : image(img), background(bg), z(img.find("Z")), coverage(img.find("coverage")), mx(img.find("motion.x")),
+          my(img.find("motion.y")) {}
+
+    void write(std::size_t pixel, const glm::dvec3& colour, double covered, double depth, const glm::dvec2& motion) {
+        const double c = std::clamp(covered, 0.0, 1.0);
+        const glm::dvec3 rgb = colour + (1.0 - c) * background;
+        for (int k = 0; k < 3; ++k) image.channels[static_cast<std::size_t>(k)].values[pixel] = static_cast<float>(rgb[k]);
+        image.channels[3].values[pixel] = static_cast<float>(c);
+        if (coverage) coverage->values[pixel] = static_cast<float>(c);
+        if (z) z->values[pixel] = covered > 0.0 ? static_cast<float>(depth / covered) : std::numeric_limits<float>::infinity();
+        if (mx) {
+            const glm::dvec2 m = covered > 0.0 ? motion / covered : glm::dvec2(0.0);
+            mx->values[pixel] = static_cast<float>(m.x);
+            my->values[pixel] = static_cast<float>(m.y);
+        }
+    }
+};
+
+void recordFrameStats(RenderStats& stats, const std::string& prefix, const FrameFragmentStats& s) {
+    stats.counts[prefix + "rays"] = s.candidates.rays;
+    stats.counts[prefix + "hit_triangles"] = s.candidates.hit_triangles;
+    stats.counts[prefix + "candidates"] = s.candidates.candidates;
+    stats.counts[prefix + "binned_triangles"] = s.candidates.binned;
+    stats.counts[prefix + "fragments"] = s.fragments;
+    stats.counts[prefix + "shaded_pieces"] = s.shaded_pieces;
+    stats.counts[prefix + "fragment_triangles"] = s.triangles;
+    stats.counts[prefix + "near_clipped"] = s.near_clipped;
+    static const char* buckets[] = {"0", "1", "2", "3_4", "5_8", "over_8"};
+    for (std::size_t b = 0; b < s.fragments_per_pixel.size(); ++b)
+        stats.counts[prefix + "pixels_with_fragments_" + buckets[b]] = s.fragments_per_pixel[b];
+}
+
+// Per-frame motion vectors of fragment triangles (centroid, raster, shutter open to close).
+std::vector<glm::vec2> fragmentMotion(const Scene& scene, const Projection& projection, double t0, double t1,
+                                      const std::vector<FragmentTriangle>& triangles) {
+    const MotionSnapshot open(scene, projection, t0), close(scene, projection, t1);
+    std::vector<glm::vec2> motion(triangles.size());
+    tbb::parallel_for(std::size_t(0), triangles.size(), [&](std::size_t i) {
+        const FragmentTriangle& t = triangles[i];
+        const MeshPoint c{t.object, t.triangle, (t.bary[0] + t.bary[1] + t.bary[2]) / 3.0};
+        const ProjectedPoint a = project(open, scene, c), b = project(close, scene, c);
+        motion[i] = a.behind || b.behind ? glm::vec2(0.0f) : glm::vec2(b.raster - a.raster);
+    });
+    return motion;
+}
+
+}  // namespace
+
+RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
+    const auto start = Clock::now();
+    const Scene& scene = job.scene;
+    const RenderSettings& settings = job.render;
+    const bool both_frames = settings.method != Method::Frame0Only;
+    const double t0 = frame + job.shutter.open;
+    const double t1 = frame + job.shutter.close;
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const TileGrid grid(scene.film.width, scene.film.height, settings.tile_size);
+    const std::size_t pixels = static_cast<std::size_t>(scene.film.width) * scene.film.height;
+
+    EmbreeDevice device;
+    const EmbreeScene embree(device, scene, t0, t1);
+    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
+    const MeshAdjacency adjacency(scene);
+    RenderResult result;
+    RenderStats& stats = result.stats;
+    stats.seconds["scene_build"] = secondsSince(start);
+
+    // 1. Clipped, shaded fragment sets at shutter open and close.
+    auto stage = Clock::now();
+    FrameFragmentStats open_stats, close_stats;
+    PixelSums still;
+    still.resize(pixels);
+    const std::vector<FragmentTriangle> open = buildFrameFragments(
+        scene, embree, adjacency, projection, grid, t0, shader, settings.visibility_rays, callbacks, true, &still, open_stats);
+    const std::vector<FragmentTriangle> close =
+        both_frames ? buildFrameFragments(scene, embree, adjacency, projection, grid, t1, shader, settings.visibility_rays,
+                                          callbacks, true, nullptr, close_stats)
+                    : std::vector<FragmentTriangle>{};
+    stats.seconds["visibility"] = secondsSince(stage);
+
+    // 2. Subframes per tile from the fragments' image-plane speeds (eq. 24, corrected).
+    stage = Clock::now();
+    FragmentLayers layers;
+    layers.triangles = {&open, both_frames ? &close : nullptr};
+    if (job.output.aov_motion) {
+        layers.motion[0] = fragmentMotion(scene, projection, t0, t1, open);
+        if (both_frames) layers.motion[1] = fragmentMotion(scene, projection, t0, t1, close);
+    }
+    const MotionPlan plan = planMotion(scene, projection, grid, t0, t1, layers, settings.subframes, settings.max_subframes);
+    stats.seconds["subframe_plan"] = secondsSince(stage);
+
+    // 3-5. Per tile and subframe: propagate, re-clip, reduce; tiles accumulate their subframes in order.
+    stage = Clock::now();
+    result.image = Image::make(scene.film.width, scene.film.height, channelNames(job.output));
+    ImageWriter writer(result.image, scene.film.background);
+    std::atomic<bool> cancelled{false};
+    std::atomic<long long> tiles_done{0};
+    std::mutex merge_mutex;
+    ReclipStats reclip_totals;
+    long long subframes_total = 0, still_tiles = 0;
+    int max_tile_subframes = 0;
+    tbb::parallel_for(0, grid.count(), [&](int index) {
+        if (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed)) {
+            cancelled = true;
+            return;
+        }
+        const Tile tile = grid.tile(index);
+        const SubframePlan& tile_plan = plan.tiles[static_cast<std::size_t>(index)];
+        const auto& refs = plan.refs[static_cast<std::size_t>(index)];
+        // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
+        // lighting between the frames) the shutter-open image is the answer.
+        const bool still_tile = tile_plan.max_sweep_pixels == 0.0 && settings.subframes == 0 && !settings.shadows;
+        const int n = still_tile ? 0 : tile_plan.count;
+        std::vector<TileSums> sums(static_cast<std::size_t>(n));
+        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
+        const std::vector<double> times = subframeTimes(t0, t1, std::max(n, 1));
+        tbb::parallel_for(0, n, [&](int k) {
+            const double t = times[static_cast<std::size_t>(k)];
+            const MotionSnapshot snapshot(scene, projection, t);
+            ReclipScratch scratch;
+            reclipSubframe(scene, snapshot, (t - t0) / (t1 - t0), layers, refs, tile, scratch,
+                           sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
+        });
+        for (int y = tile.y0; y < tile.y1; ++y) {
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
+                if (still_tile) {
+                    writer.write(pixel, still.colour[pixel], still.covered[pixel], still.depth[pixel], glm::dvec2(0.0));
+                    continue;
+                }
+                const std::size_t i = static_cast<std::size_t>(y - tile.y0) * tile.width() + (x - tile.x0);
+                glm::dvec3 colour(0.0);
+                double covered = 0.0, depth = 0.0;
+                glm::dvec2 motion(0.0);
+                for (const TileSums& s : sums) {  // fixed order: bit-identical for any thread count
+                    colour += s.colour[i];
+                    covered += s.covered[i];
+                    depth += s.depth[i];
+                    motion += s.motion[i];
+                }
+                const double w = 1.0 / n;
+                writer.write(pixel, colour * w, covered * w, depth, motion);
+            }
+        }
+        {
+            std::lock_guard lock(merge_mutex);
+            for (const ReclipStats& s : sub_stats) {
+                reclip_totals.propagated += s.propagated;
+                reclip_totals.near_clipped += s.near_clipped;
+                reclip_totals.fragments += s.fragments;
+                reclip_totals.mixed += s.mixed;
+            }
+            subframes_total += n;
+            still_tiles += still_tile ? 1 : 0;
+            max_tile_subframes = std::max(max_tile_subframes, n);
+        }
+        const long long done = ++tiles_done;
+        if (callbacks.progress) {
+            std::lock_guard lock(merge_mutex);
+            callbacks.progress(done, grid.count());
+        }
+    });
+    if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
+    stats.seconds["subframes"] = secondsSince(stage);
+    stats.seconds["total"] = secondsSince(start);
+
+    stats.info["method"] = both_frames ? "clipped" : "frame0_only";
+    stats.counts["frame"] = frame;
+    stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
+    stats.counts["tiles"] = grid.count();
+    stats.counts["still_tiles"] = still_tiles;
+    stats.counts["subframes_total"] = subframes_total;
+    stats.counts["subframes_max_per_tile"] = max_tile_subframes;
+    stats.counts["capped_tiles"] = plan.capped_tiles;
+    stats.counts["measured_fragment_paths"] = plan.measured;
+    stats.counts["propagated_triangles"] = reclip_totals.propagated;
+    stats.counts["reclip_near_clipped"] = reclip_totals.near_clipped;
+    stats.counts["reclip_fragments"] = reclip_totals.fragments;
+    stats.counts["reclip_mixed_fragments"] = reclip_totals.mixed;
+    stats.counts["triangles"] = embree.stats().triangles;
+    recordFrameStats(stats, "open_", open_stats);
+    if (both_frames) recordFrameStats(stats, "close_", close_stats);
+    if (plan.capped_tiles > 0)
+        stats.info["warning"] = std::to_string(plan.capped_tiles) + " tiles needed more than max_subframes (" +
+                                std::to_string(settings.max_subframes) + "); motion there may strobe";
+    return result;
+}
+
+RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
+    const auto start = Clock::now();
+    const Scene& scene = job.scene;
+    const RenderSettings& settings = job.render;
+    const double t0 = frame + job.shutter.open;
+    const double t1 = frame + job.shutter.close;
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const TileGrid grid(scene.film.width, scene.film.height, settings.tile_size);
+    const std::size_t pixels = static_cast<std::size_t>(scene.film.width) * scene.film.height;
+    const int n = std::max(1, settings.samples);
+
+    EmbreeDevice device;
+    const EmbreeScene embree(device, scene, t0, t1);
+    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
+    const MeshAdjacency adjacency(scene);
+
+    PixelSums total;
+    total.resize(pixels);
+    FrameFragmentStats frame_stats;
+    for (const double t : subframeTimes(t0, t1, n)) {
+        PixelSums sums;
+        sums.resize(pixels);
+        buildFrameFragments(scene, embree, adjacency, projection, grid, t, shader, settings.visibility_rays, callbacks,
+                            false, &sums, frame_stats);
+        for (std::size_t p = 0; p < pixels; ++p) {
+            total.colour[p] += sums.colour[p];
+            total.covered[p] += sums.covered[p];
+            total.depth[p] += sums.depth[p];
+        }
+    }
+    RenderResult result;
+    result.image = Image::make(scene.film.width, scene.film.height, channelNames(job.output));
+    ImageWriter writer(result.image, scene.film.background);
+    for (std::size_t p = 0; p < pixels; ++p)
+        writer.write(p, total.colour[p] / double(n), total.covered[p] / double(n), total.depth[p], glm::dvec2(0.0));
+    RenderStats& stats = result.stats;
+    stats.info["method"] = "accumulation";
+    stats.counts["frame"] = frame;
+    stats.counts["renders"] = n;
+    stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
+    recordFrameStats(stats, "all_", frame_stats);
+    stats.seconds["total"] = secondsSince(start);
+    return result;
+}
+
+}  // namespace clipblur

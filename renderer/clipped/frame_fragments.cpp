@@ -1,0 +1,124 @@
+#include "renderer/clipped/frame_fragments.h"
+
+#include <tbb/parallel_for.h>
+
+#include "renderer/fragments/fragment_tile.h"
+#include "renderer/shading/fragment_shading.h"
+#include "renderer/visibility/frame_geometry.h"
+#include "scene/error.h"
+
+namespace clipblur {
+
+void PixelSums::resize(std::size_t pixels) {
+    colour.assign(pixels, glm::dvec3(0.0));
+    covered.assign(pixels, 0.0);
+    depth.assign(pixels, 0.0);
+}
+
+namespace {
+
+int bucketOf(std::size_t count) {
+    if (count <= 2) return static_cast<int>(count);
+    if (count <= 4) return 3;
+    return count <= 8 ? 4 : 5;
+}
+
+struct TileOutput {
+    std::vector<FragmentTriangle> triangles;
+    FrameFragmentStats stats;
+};
+
+}  // namespace
+
+std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const EmbreeScene& embree,
+                                                  const MeshAdjacency& adjacency, const Projection& projection,
+                                                  const TileGrid& grid, double time, const Shader& shader,
+                                                  int rays_per_side, const RenderCallbacks& callbacks,
+                                                  bool keep_triangles, PixelSums* still,
+                                                  FrameFragmentStats& stats) {
+    const FrameGeometry frame(scene, projection, time, grid);
+    const glm::dvec3 eye = frame.camera().position;
+    const int width = scene.film.width;
+    std::vector<TileOutput> outputs(static_cast<std::size_t>(grid.count()));
+    std::atomic<bool> cancelled{false};
+
+    tbb::parallel_for(0, grid.count(), [&](int index) {
+        if (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed)) {
+            cancelled = true;
+            return;
+        }
+        const Tile tile = grid.tile(index);
+        TileOutput& out = outputs[static_cast<std::size_t>(index)];
+        CandidateScratch candidate_scratch;
+        std::vector<std::uint32_t> candidates;
+        findCandidates(frame, embree, adjacency, projection, tile, index, rays_per_side, candidate_scratch,
+                       candidates, out.stats.candidates);
+        std::vector<ScreenTriangle> local;
+        local.reserve(candidates.size());
+        for (std::uint32_t c : candidates) local.push_back(frame.triangles()[c]);
+
+        TileScratch scratch;
+        FragmentTile fragments;
+        resolveTile(local, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch, fragments);
+        out.stats.rejected_triangles += fragments.rejected_triangles;
+        out.stats.dropped_area += fragments.dropped_area;
+
+        std::vector<ShadedPiece> pieces;
+        for (int y = tile.y0; y < tile.y1; ++y) {
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const auto pixel_fragments = fragments.pixel(x, y);
+                ++out.stats.fragments_per_pixel[static_cast<std::size_t>(bucketOf(pixel_fragments.size()))];
+                out.stats.fragments += static_cast<long long>(pixel_fragments.size());
+                const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
+                for (const Fragment& fragment : pixel_fragments) {
+                    const std::uint32_t screen_index = candidates[fragment.sources[0].source];
+                    const ScreenTriangle& screen = frame.triangles()[screen_index];
+                    const SourceTriangle& source = frame.source(screen_index);
+                    ConvexPolygon polygon;
+                    for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
+                    polygon.close();
+                    pieces.clear();
+                    shadeFragment(polygon, screen, source, shader, time, eye, pieces);
+                    out.stats.shaded_pieces += static_cast<long long>(pieces.size());
+                    for (const ShadedPiece& piece : pieces) {
+                        if (still) {
+                            still->colour[pixel] += piece.area * piece.colour;
+                            still->covered[pixel] += piece.area;
+                            SourceSample s;
+                            if (evalSource(screen, centroid(piece.polygon), s))
+                                still->depth[pixel] += piece.area / s.inv_depth;
+                        }
+                        const glm::vec3 colour(piece.colour);
+                        for (int k = 1; k + 1 < piece.polygon.n; ++k)
+                            out.triangles.push_back({source.object, source.triangle,
+                                                     {piece.bary[0], piece.bary[k], piece.bary[k + 1]}, colour});
+                    }
+                }
+            }
+        }
+        out.stats.triangles = static_cast<long long>(out.triangles.size());
+        if (!keep_triangles) out.triangles.clear();
+    });
+    if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
+
+    std::vector<FragmentTriangle> all;
+    stats.near_clipped += frame.clippedByNearPlane();
+    for (TileOutput& out : outputs) {
+        all.insert(all.end(), out.triangles.begin(), out.triangles.end());
+        const FrameFragmentStats& s = out.stats;
+        stats.candidates.rays += s.candidates.rays;
+        stats.candidates.hit_triangles += s.candidates.hit_triangles;
+        stats.candidates.candidates += s.candidates.candidates;
+        stats.candidates.binned += s.candidates.binned;
+        stats.fragments += s.fragments;
+        stats.shaded_pieces += s.shaded_pieces;
+        stats.triangles += s.triangles;
+        stats.rejected_triangles += s.rejected_triangles;
+        stats.dropped_area += s.dropped_area;
+        for (std::size_t b = 0; b < s.fragments_per_pixel.size(); ++b)
+            stats.fragments_per_pixel[b] += s.fragments_per_pixel[b];
+    }
+    return all;
+}
+
+}  // namespace clipblur

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <atomic>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderer/clipped/fragment_triangle.h"
+#include "renderer/fragments/pixel_resolver.h"
+#include "renderer/render.h"
+#include "renderer/shading/shading.h"
+#include "renderer/tiles.h"
+#include "renderer/visibility/candidates.h"
+#include "renderer/visibility/embree_scene.h"
+
+namespace clipblur {
+
+// A still image before the background is added: per pixel the area-weighted colour sum and covered area.
+struct PixelSums {
+    std::vector<glm::dvec3> colour;
+    std::vector<double> covered;
+    std::vector<double> depth;  // area-weighted camera depth sum (for the Z AOV)
+
+    void resize(std::size_t pixels);
+};
+
+struct FrameFragmentStats {
+    CandidateStats candidates;
+    long long fragments = 0;           // visible convex pieces after clipping
+    long long shaded_pieces = 0;       // after texture-cell cuts
+    long long triangles = 0;           // fragment triangles kept for propagation
+    long long near_clipped = 0;
+    long long rejected_triangles = 0;
+    double dropped_area = 0.0;
+    std::array<long long, 6> fragments_per_pixel{};  // pixels with 0, 1, 2, 3-4, 5-8, >8 fragments
+};
+
+// Section 1 of the paper at one instant: Embree finds the candidate triangles per tile, the clipping
+// kernel makes each pixel's non-overlapping fragments, and each fragment is shaded with that time's
+// lighting. Returns the fragments as triangles on their meshes (in tile order, so deterministic; empty
+// unless keep_triangles) and, when `still` is given, the frame's pixel sums. Parallel over tiles.
+std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const EmbreeScene& embree,
+                                                  const MeshAdjacency& adjacency, const Projection& projection,
+                                                  const TileGrid& grid, double time, const Shader& shader,
+                                                  int rays_per_side, const RenderCallbacks& callbacks,
+                                                  bool keep_triangles, PixelSums* still,
+                                                  FrameFragmentStats& stats);
+
+}  // namespace clipblur

@@ -1,0 +1,98 @@
+#include "renderer/clipped/motion_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "scene/object_motion.h"
+
+namespace clipblur {
+
+bool cameraIsStill(const Camera& camera, double t0, double t1) {
+    std::vector<double> times{t0, t1};
+    for (const CameraKey& k : camera.keys)
+        if (k.time > t0 && k.time < t1) times.push_back(k.time);
+    const CameraFrame a = evalCamera(camera, t0);
+    for (double t : times) {
+        const CameraFrame b = evalCamera(camera, t);
+        if (a.position != b.position || a.e1 != b.e1 || a.e3 != b.e3) return false;
+    }
+    return true;
+}
+
+MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
+                      const FragmentLayers& layers, int subframes, int max_subframes) {
+    const bool still_camera = cameraIsStill(scene.camera, t0, t1);
+    std::vector<char> still_object(scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o)
+        still_object[o] = still_camera && isStatic(scene.objects[o], t0, t1);
+
+    // Few intervals: the swept box keeps a speed-times-gap margin, and the count uses peak speed.
+    const ShutterPathSampler sampler(scene, projection, t0, t1, 2);
+    const MotionSnapshot open(scene, projection, t0);
+
+    std::array<std::vector<FragmentMotion>, 2> motion;
+    MotionPlan plan;
+    for (int layer = 0; layer < 2; ++layer) {
+        const auto* triangles = layers.triangles[static_cast<std::size_t>(layer)];
+        if (!triangles) continue;
+        auto& m = motion[static_cast<std::size_t>(layer)];
+        m.resize(triangles->size());
+        tbb::parallel_for(std::size_t(0), triangles->size(), [&](std::size_t i) {
+            const FragmentTriangle& t = (*triangles)[i];
+            const std::array<MeshPoint, 3> points{MeshPoint{t.object, t.triangle, t.bary[0]},
+                                                  MeshPoint{t.object, t.triangle, t.bary[1]},
+                                                  MeshPoint{t.object, t.triangle, t.bary[2]}};
+            if (still_object[t.object]) {
+                FragmentMotion fm;
+                for (const MeshPoint& p : points) fm.swept.expand(project(open, scene, p).raster);
+                m[i] = fm;
+            } else {
+                m[i] = sampler.measure(points);
+            }
+        });
+        for (std::size_t i = 0; i < triangles->size(); ++i) plan.measured += still_object[(*triangles)[i].object] ? 0 : 1;
+    }
+
+    const int count = grid.count();
+    plan.refs.resize(static_cast<std::size_t>(count));
+    plan.tiles.resize(static_cast<std::size_t>(count));
+    const double size = grid.tileSize();
+    for (int layer = 0; layer < 2; ++layer) {
+        const auto& m = motion[static_cast<std::size_t>(layer)];
+        for (std::uint32_t i = 0; i < m.size(); ++i) {
+            const RasterBox& box = m[i].swept;
+            int c0 = 0, c1 = grid.columns() - 1, r0 = 0, r1 = grid.rows() - 1;
+            if (!m[i].crosses_near) {
+                c0 = static_cast<int>(std::clamp(std::floor(box.lo.x / size), 0.0, double(grid.columns())));
+                c1 = static_cast<int>(std::clamp(std::floor(box.hi.x / size), -1.0, double(grid.columns() - 1)));
+                r0 = static_cast<int>(std::clamp(std::floor(box.lo.y / size), 0.0, double(grid.rows())));
+                r1 = static_cast<int>(std::clamp(std::floor(box.hi.y / size), -1.0, double(grid.rows() - 1)));
+            }
+            for (int r = r0; r <= r1; ++r)
+                for (int c = c0; c <= c1; ++c)
+                    plan.refs[static_cast<std::size_t>(r * grid.columns() + c)].push_back(
+                        {i, static_cast<std::uint8_t>(layer)});
+        }
+    }
+
+    tbb::parallel_for(0, count, [&](int index) {
+        const auto& refs = plan.refs[static_cast<std::size_t>(index)];
+        SubframePlan& p = plan.tiles[static_cast<std::size_t>(index)];
+        p = SubframePlan{};
+        for (const FragmentRef& ref : refs) {
+            const FragmentMotion& fm = motion[ref.layer][ref.index];
+            p.max_path_pixels = std::max(p.max_path_pixels, fm.max_path_pixels);
+            p.max_sweep_pixels = std::max(p.max_sweep_pixels, fm.max_sweep_pixels);
+            p.near_crossings += fm.crosses_near ? 1 : 0;
+            ++p.fragments;
+        }
+        p.count = subframes > 0 ? std::min(subframes, max_subframes)
+                                : subframeCount(p.max_sweep_pixels, max_subframes, &p.capped);
+    });
+    for (const SubframePlan& p : plan.tiles) plan.capped_tiles += p.capped ? 1 : 0;
+    return plan;
+}
+
+}  // namespace clipblur

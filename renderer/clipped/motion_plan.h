@@ -1,0 +1,28 @@
+#pragma once
+
+#include <vector>
+
+#include "renderer/clipped/subframe_reclip.h"
+#include "renderer/propagation/subframes.h"
+#include "renderer/tiles.h"
+
+namespace clipblur {
+
+// Which fragment triangles can reach each tile during the shutter, and how many subframes each tile needs.
+struct MotionPlan {
+    std::vector<std::vector<FragmentRef>> refs;  // per tile, layer 0 first, each in index order
+    std::vector<SubframePlan> tiles;
+    long long capped_tiles = 0;
+    long long measured = 0;     // fragment triangles whose path was sampled
+};
+
+// Measures every fragment triangle's swept raster box and peak speed over [t0, t1] (triangles of objects
+// that do not move under a still camera are measured at t0 only), bins them to the tiles their swept
+// box overlaps, and plans each tile's subframes (the corrected eq. 24). subframes > 0 forces that count.
+MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
+                      const FragmentLayers& layers, int subframes, int max_subframes);
+
+// True when the camera keys give the same pose at every time of [t0, t1].
+bool cameraIsStill(const Camera& camera, double t0, double t1);
+
+}  // namespace clipblur

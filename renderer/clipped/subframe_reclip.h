@@ -1,0 +1,60 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderer/clipped/fragment_triangle.h"
+#include "renderer/fragments/fragment_tile.h"
+#include "renderer/propagation/surface_path.h"
+#include "renderer/tiles.h"
+
+namespace clipblur {
+
+// A fragment triangle of frame 0 (layer 0) or frame 1 (layer 1).
+struct FragmentRef {
+    std::uint32_t index = 0;
+    std::uint8_t layer = 0;
+};
+
+// The fragment triangles of both frames, and per triangle its open-to-close raster motion (for the AOV).
+struct FragmentLayers {
+    std::array<const std::vector<FragmentTriangle>*, 2> triangles{};
+    std::array<std::vector<glm::vec2>, 2> motion;
+};
+
+// One subframe's pixel values over a tile (tile-local, row-major), before the background is added.
+struct TileSums {
+    std::vector<glm::dvec3> colour;
+    std::vector<double> covered;
+    std::vector<double> depth;
+    std::vector<glm::dvec2> motion;
+
+    void reset(std::size_t pixels);
+};
+
+struct ReclipScratch {
+    std::vector<ScreenTriangle> screen;
+    std::vector<FragmentRef> origin;  // per screen triangle
+    TileScratch tile;
+    FragmentTile fragments;
+};
+
+struct ReclipStats {
+    long long propagated = 0;      // fragment triangles moved to the subframe
+    long long near_clipped = 0;    // of those, clipped in 3D at the camera plane
+    long long fragments = 0;       // non-overlapping pieces after the re-clip
+    long long mixed = 0;           // pieces where both frames' copies of a surface coincide
+};
+
+// Sections 3.2-3.4 for one (tile, subframe): moves every referenced fragment triangle to the snapshot's
+// time along its exact path (frame-0 ones forward, frame-1 ones backward: the same function of time),
+// clips pieces crossing the camera plane in 3D, re-clips the union per pixel into non-overlapping
+// fragments (equal range: one kept, colours mixed with weights 1-f and f), and reduces each pixel.
+void reclipSubframe(const Scene& scene, const MotionSnapshot& snapshot, double f, const FragmentLayers& layers,
+                    std::span<const FragmentRef> refs, const Tile& tile, ReclipScratch& scratch, TileSums& out,
+                    ReclipStats& stats);
+
+}  // namespace clipblur

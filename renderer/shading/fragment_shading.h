@@ -1,0 +1,37 @@
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderer/fragments/screen_triangle.h"
+#include "renderer/geometry/convex_polygon.h"
+#include "renderer/shading/shading.h"
+#include "renderer/visibility/frame_geometry.h"
+
+namespace clipblur {
+
+// A piece of a fragment with one colour, its vertices' barycentrics on the mesh triangle.
+struct ShadedPiece {
+    ConvexPolygon polygon;  // raster space
+    std::array<glm::dvec3, kMaxPolygonVertices> bary{};
+    glm::dvec3 colour{0.0};
+    double area = 0.0;
+};
+
+// Most texture-cell boundaries one fragment is cut along per axis; finer textures than that are shaded
+// at the piece centroids (they alias inside the pixel, which is then the documented limit).
+inline constexpr int kMaxTextureCuts = 8;
+
+// Cuts a visible fragment polygon of `screen` along its material's checker or stripe cell boundaries
+// (planes in object space, hence lines in raster space: (X - k s)/z is affine in raster), so that every
+// piece has one albedo, then shades each piece at its area centroid. Lambert lighting varies smoothly
+// over a fragment, so the centroid value is second-order accurate in the fragment size; a directional
+// light on a flat triangle is exact.
+void shadeFragment(const ConvexPolygon& polygon, const ScreenTriangle& screen, const SourceTriangle& source,
+                   const Shader& shader, double time, const glm::dvec3& eye, std::vector<ShadedPiece>& out);
+
+// The area centroid of a convex polygon.
+glm::dvec2 centroid(const ConvexPolygon& polygon);
+
+}  // namespace clipblur
