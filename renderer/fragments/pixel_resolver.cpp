@@ -105,10 +105,14 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
     outside_.clear();
     ConvexPolygon overlap;
     splitByConvex(w, pieces_[qi].poly, outside_, overlap);
-    if (overlap.degenerate() || overlap.area() <= settings_.min_area) return false;
+    if (overlap.degenerate()) return false;
 
     // w is consumed: the parts outside Q go on against the pieces after Q.
     for (const ConvexPolygon& o : outside_) queueWork(o, qi + 1);
+    // A sliver overlap is dropped (and accounted) rather than ignored, so pieces never overlap by more
+    // than rounding.
+    double overlap_area = 0.0;
+    if (dropIfSliver(overlap, overlap_area)) return true;
 
     const Piece q = pieces_[qi];  // a copy: pieces_ may grow below
     std::array<double, kMaxPolygonVertices> d;
