@@ -10,5 +10,7 @@ namespace clipblur::cli {
 // process exit code. Errors are thrown as clipblur::Error and reported once, in main.
 using Action = std::function<int()>;
 
+// clipblur paths: image-plane vertex paths of the paper's Table 1 (section 2.4).
+Action addPathsCommand(CLI::App& app);
 
 }  // namespace clipblur::cli
