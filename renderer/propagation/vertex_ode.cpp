@@ -42,6 +42,14 @@ namespace {
 
 bool isFinite(const glm::dvec3& y) { return std::isfinite(y.x) && std::isfinite(y.y) && std::isfinite(y.z); }
 
+// A step that lands on or across the camera plane (depth changes sign) has stepped over the pole of
+// p = c / z; its end value may look finite but the path in between is not.
+void checkSameSide(const glm::dvec3& before, const glm::dvec3& after, double f) {
+    if (!isFinite(after) || !(before.z * after.z > 0.0))
+        throw Error(ExitCode::Render,
+                    "vertex path crosses the camera plane (depth 0) near f = " + std::to_string(f));
+}
+
 [[noreturn]] void throwRenderError(const std::string& message) { throw Error(ExitCode::Render, message); }
 
 glm::dvec3 rk4Step(const VertexOde& ode, double f, const glm::dvec3& y, double h) {
@@ -66,9 +74,9 @@ glm::dvec3 integrateFixed(const VertexOde& ode, OdeMethod method, double f0, con
     for (int i = 0; i < steps; ++i) {
         // Times from the index, not by accumulation, so the last step lands on f1 exactly.
         const double f = f0 + i * h;
-        y = method == OdeMethod::Euler ? y + h * ode.derivative(f, y) : rk4Step(ode, f, y, h);
-        if (!isFinite(y) || y.z == 0.0)
-            throwRenderError("vertex path left the region in front of the camera near f = " + std::to_string(f));
+        const glm::dvec3 next = method == OdeMethod::Euler ? y + h * ode.derivative(f, y) : rk4Step(ode, f, y, h);
+        checkSameSide(y, next, f);
+        y = next;
     }
     return y;
 }
@@ -99,6 +107,7 @@ AdaptiveResult integrateAdaptive(const VertexOde& ode, double f0, const glm::dve
             err == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(tolerance / err, 0.2), 0.2, 5.0);
         if (err <= tolerance) {
             const bool last = f + h == f1 || direction * (f + h - f1) >= 0.0;
+            checkSameSide(result.y, both + diff, f);
             f = last ? f1 : f + h;
             result.y = both + diff;
             ++result.accepted;
