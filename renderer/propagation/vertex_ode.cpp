@@ -8,11 +8,7 @@
 
 namespace clipblur {
 
-VertexOde::VertexOde(const VertexPath& path)
-    : rotation_(path.rotation()),
-      w_(path.rotation().angularVelocity()),
-      velocity0_(path.velocityCamera0()),
-      path_(path) {}
+VertexOde::VertexOde(const VertexPath& path) : path_(path), w_(path.rotation().angularVelocity()) {}
 
 glm::dvec3 VertexOde::exactState(double f) const {
     const ImagePoint ip = path_.at(f);
@@ -24,7 +20,7 @@ glm::dvec3 VertexOde::derivative(double f, const glm::dvec3& y) const {
     const double p2 = y.y;
     const double inv_z = 1.0 / y.z;
     // (r' - r_c') in the camera basis at f: e_i(f).d' = e_i(0).R(f)^T d'.
-    const glm::dvec3 v = rotation_.at(f) * velocity0_;
+    const glm::dvec3 v = path_.rotation().at(f) * path_.velocityCamera0();
     // n' = w x n, so e1.n' = w2 and e2.n' = -w1 (components in the moving basis are constant).
     const double e1_dn = w_.y;
     const double e2_dn = -w_.x;

@@ -22,10 +22,8 @@ public:
     double omega() const { return -w_.z; }
 
 private:
-    CameraRotationPath rotation_;
-    glm::dvec3 w_{0.0};         // angular velocity, components in the moving camera basis (constant)
-    glm::dvec3 velocity0_{0.0}; // B0^T d'
     VertexPath path_;
+    glm::dvec3 w_{0.0};  // angular velocity, components in the moving camera basis (constant)
 };
 
 enum class OdeMethod { Euler, Rk4 };
