@@ -13,4 +13,7 @@ using Action = std::function<int()>;
 // `clipblur validate JOB [--set key=value]...`: loads and checks a job, prints a summary.
 Action addValidateCommand(CLI::App& app);
 
+// clipblur paths: image-plane vertex paths of the paper's Table 1 (section 2.4).
+Action addPathsCommand(CLI::App& app);
+
 }  // namespace clipblur::cli

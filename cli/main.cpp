@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
         cli::Action action = registerCommand(app);
         commands.emplace_back(app.get_subcommands({})[before], std::move(action));
     };
+    add(cli::addPathsCommand);
 
     add(cli::addValidateCommand);
 
