@@ -71,7 +71,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
                 out.stats.fragments += static_cast<long long>(pixel_fragments.size());
                 const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
                 for (const Fragment& fragment : pixel_fragments) {
-                    const std::uint32_t screen_index = candidates[fragment.sources[0].source];
+                    const std::uint32_t screen_index = fragment.sources[0].source;  // ScreenTriangle::source: the frame index
                     const ScreenTriangle& screen = frame.triangles()[screen_index];
                     const SourceTriangle& source = frame.source(screen_index);
                     ConvexPolygon polygon;

@@ -1,0 +1,200 @@
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "renderer/render.h"
+#include "renderer/test_scenes.h"
+#include "support/translating_coverage.h"
+
+namespace clipblur {
+
+namespace {
+
+using test::rasterQuad;
+using test::squareFilmJob;
+using test::worldAtRaster;
+
+const std::vector<float>& channel(const RenderResult& r, const char* name) { return r.image.find(name)->values; }
+
+double overlap(double a0, double a1, double b0, double b1) { return std::max(0.0, std::min(a1, b1) - std::max(a0, b0)); }
+
+// Exact coverage of pixel (x, y) by the axis-aligned raster rectangle [x0, x1) x [y0, y1).
+double rectCoverage(int x, int y, double x0, double y0, double x1, double y1) {
+    return overlap(x, x + 1, x0, x1) * overlap(y, y + 1, y0, y1);
+}
+
+RenderJob clippedJob() {
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    return job;
+}
+
+// A quad over raster [x0,x1) x [y0,y1) at `depth` that translates by `v` pixels over the shutter.
+Object movingQuad(double x0, double y0, double x1, double y1, double depth, glm::dvec2 v) {
+    Object quad = rasterQuad(x0, y0, x1, y1, depth);
+    const glm::dvec3 shift = worldAtRaster(x0 + v.x, y0 + v.y, depth) - worldAtRaster(x0, y0, depth);
+    quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
+    quad.transform.push_back(TransformKey{1.0, shift, {1, 0, 0, 0}, glm::dvec3(1.0)});
+    return quad;
+}
+
+double maxError(const RenderResult& r, const std::vector<double>& expected) {
+    const auto& red = channel(r, "R");
+    double worst = 0.0;
+    for (std::size_t i = 0; i < expected.size(); ++i) worst = std::max(worst, std::abs(red[i] - expected[i]));
+    return worst;
+}
+
+std::vector<double> translatingExpected(double x0, double y0, double x1, double y1, glm::dvec2 v) {
+    const std::vector<glm::dvec2> quad{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    std::vector<double> expected(32 * 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) expected[y * 32 + x] = testing::translatingPixelCoverage(quad, v, x, y);
+    return expected;
+}
+
+}  // namespace
+
+// Values are stored as float: 1e-6 covers float rounding of values <= 1 (6e-8) with margin, and is
+// far below any coverage mistake the clipper could make.
+constexpr double kFloatTolerance = 1e-6;
+
+TEST(ClippedRenderer, StillRectangleHasExactPixelCoverage) {
+    RenderJob job = clippedJob();
+    const double x0 = 3.25, y0 = 4.5, x1 = 20.75, y1 = 17.125;
+    job.scene.objects.push_back(rasterQuad(x0, y0, x1, y1, 5.0));
+    const RenderResult r = renderFrame(job, 0);
+    std::vector<double> expected(32 * 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) expected[y * 32 + x] = rectCoverage(x, y, x0, y0, x1, y1);
+    EXPECT_LT(maxError(r, expected), kFloatTolerance);
+    EXPECT_EQ(r.stats.counts.at("subframes_total"), 0) << "nothing moves: no subframes";
+}
+
+TEST(ClippedRenderer, StillTriangleMatchesIndependentPolygonClip) {
+    RenderJob job = clippedJob();
+    const std::vector<glm::dvec2> raster{{2.3, 3.1}, {29.6, 11.7}, {9.2, 27.9}};
+    Object tri;
+    for (const auto& p : raster) tri.mesh.positions.push_back(worldAtRaster(p.x, p.y, 4.0));
+    tri.mesh.triangles = {{0, 1, 2}};
+    job.scene.objects.push_back(tri);
+    const RenderResult r = renderFrame(job, 0);
+    std::vector<double> expected(32 * 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            expected[y * 32 + x] = testing::translatingPixelCoverage(raster, glm::dvec2(0.0), x, y);
+    EXPECT_LT(maxError(r, expected), kFloatTolerance);
+}
+
+TEST(ClippedRenderer, FrontQuadHidesBackQuadExactly) {
+    RenderJob job = clippedJob();
+    Material red;
+    red.base_color = glm::dvec3(1, 0, 0);
+    job.scene.materials.push_back(red);  // material 1
+    Object back = rasterQuad(2.5, 2.5, 25.5, 25.5, 8.0);
+    back.material = 1;
+    job.scene.objects.push_back(back);
+    job.scene.objects.push_back(rasterQuad(10.25, 6.75, 30.5, 20.5, 4.0));  // white, in front
+    const RenderResult r = renderFrame(job, 0);
+    const auto& g = channel(r, "G");  // only the white front quad has green
+    const auto& red_ch = channel(r, "R");
+    for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 32; ++x) {
+            const double front = rectCoverage(x, y, 10.25, 6.75, 30.5, 20.5);
+            const double back_all = rectCoverage(x, y, 2.5, 2.5, 25.5, 25.5);
+            const double both = overlap(x, x + 1, 10.25, 25.5) * overlap(y, y + 1, 6.75, 20.5);
+            EXPECT_NEAR(g[y * 32 + x], front, kFloatTolerance);
+            EXPECT_NEAR(red_ch[y * 32 + x], front + back_all - both, kFloatTolerance);
+        }
+    }
+}
+
+// Section 3 against the exact time-integrated coverage of a quad sliding parallel to the image plane.
+// A pixel's covered area is piecewise linear in shutter time s for this motion, with a kink whenever a
+// quad edge enters or leaves the pixel; the slope jumps there by at most the edge's speed |v_x| or |v_y|
+// (px per shutter). The midpoint rule with step h = 1/N is exact on linear pieces and errs by at most
+// jump * h^2 / 8 at a kink, and a pixel meets at most 4 kinks per axis, so the a-priori bound is
+// (|v_x| + |v_y|) / (2 N^2). The measured order must also be close to 2.
+TEST(ClippedRenderer, TranslatingQuadConvergesToExactTimeIntegratedCoverage) {
+    const double x0 = 4.3, y0 = 6.2, x1 = 14.7, y1 = 19.9;
+    const glm::dvec2 v(11.4, 3.7);
+    const std::vector<double> expected = translatingExpected(x0, y0, x1, y1, v);
+    std::vector<double> errors;
+    for (int n : {3, 6, 12, 24}) {
+        RenderJob job = clippedJob();
+        job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
+        job.render.subframes = n;
+        errors.push_back(maxError(renderFrame(job, 0), expected));
+    }
+    const double order = std::log2(errors.front() / errors.back()) / 3.0;
+    EXPECT_GT(order, 1.6) << "errors " << errors[0] << " " << errors[1] << " " << errors[2] << " " << errors[3];
+    const auto bound = [&](int n) { return (std::abs(v.x) + std::abs(v.y)) / (2.0 * n * n); };
+    EXPECT_LT(errors.back(), bound(24));
+    EXPECT_LT(errors.front(), bound(3));
+
+    RenderJob job = clippedJob();
+    job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
+    const RenderResult r = renderFrame(job, 0);
+    EXPECT_EQ(r.stats.counts.at("subframes_max_per_tile"), 12) << "ceil(|v|) = ceil(11.99)";
+    EXPECT_LT(maxError(r, expected), bound(12));
+}
+
+TEST(ClippedRenderer, StaticSceneIsTheSameWithAnySubframeCount) {
+    RenderJob job = clippedJob();
+    job.scene.objects.push_back(rasterQuad(3.3, 2.7, 27.1, 22.9, 5.0));
+    job.scene.objects.push_back(rasterQuad(8.2, 9.9, 16.4, 30.2, 3.0));
+    const RenderResult still = renderFrame(job, 0);
+    for (int n : {1, 2, 5}) {
+        job.render.subframes = n;
+        const RenderResult r = renderFrame(job, 0);
+        for (const char* c : {"R", "G", "B", "A"})
+            for (std::size_t i = 0; i < 32 * 32; ++i)
+                ASSERT_NEAR(channel(r, c)[i], channel(still, c)[i], kFloatTolerance) << c << " pixel " << i << " N " << n;
+    }
+}
+
+// A quad sweeping over a still background quad: at every instant the background covers its whole
+// rectangle, so coverage there is 1. Frame 0's set lacks the background hidden at shutter open, so the
+// frame-0-only ablation opens gaps that the union with frame 1 fills.
+TEST(ClippedRenderer, DisocclusionHasNoGapsButFrame0OnlyDoes) {
+    RenderJob job = clippedJob();
+    job.scene.objects.push_back(rasterQuad(1.0, 1.0, 31.0, 31.0, 10.0));
+    job.scene.objects.push_back(movingQuad(4.0, 8.0, 12.0, 20.0, 4.0, {14.0, 0.0}));
+    const RenderResult clipped = renderFrame(job, 0);
+    job.render.method = Method::Frame0Only;
+    const RenderResult frame0 = renderFrame(job, 0);
+    double worst_clipped = 1.0, worst_frame0 = 1.0;
+    for (int y = 1; y < 31; ++y) {
+        for (int x = 1; x < 31; ++x) {
+            worst_clipped = std::min<double>(worst_clipped, channel(clipped, "A")[y * 32 + x]);
+            worst_frame0 = std::min<double>(worst_frame0, channel(frame0, "A")[y * 32 + x]);
+        }
+    }
+    EXPECT_NEAR(worst_clipped, 1.0, 1e-5);
+    EXPECT_LT(worst_frame0, 0.5) << "the frame-0-only ablation should show the revealed gap";
+}
+
+TEST(ClippedRenderer, BitIdenticalForOneAndTwoThreads) {
+    RenderJob job = clippedJob();
+    Material checker;
+    checker.texture.kind = Texture::Kind::Checker;
+    checker.texture.scale = 0.3;
+    job.scene.materials.push_back(checker);
+    Object back = rasterQuad(0.5, 0.5, 31.5, 31.5, 10.0);
+    back.material = 1;
+    job.scene.objects.push_back(back);
+    job.scene.objects.push_back(movingQuad(4.0, 8.0, 12.0, 20.0, 4.0, {9.0, 5.0}));
+    job.scene.lights.push_back(Light{});
+    std::vector<RenderResult> results;
+    for (int threads : {1, 2}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        results.push_back(renderFrame(job, 0));
+    }
+    for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
+        EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
+}
+
+}  // namespace clipblur
