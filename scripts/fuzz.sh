@@ -17,5 +17,5 @@ cp tests/fuzz/seeds/*.json "$corpus/" 2>/dev/null || true
 
 mkdir -p build-fuzz/artifacts
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  build-fuzz/job_loader_fuzz "$corpus" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
+  build-fuzz/tests/job_loader_fuzz "$corpus" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
   -timeout=10 -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1
