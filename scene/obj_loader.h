@@ -11,7 +11,7 @@ namespace clipblur {
 inline constexpr std::uintmax_t kMaxObjFileBytes = std::uintmax_t{512} << 20;
 
 // Positions and triangles of every shape in a Wavefront OBJ file, merged into one mesh (polygons
-// fanned into triangles; normals, texture coordinates and materials ignored). `ref` locates the
+// triangulated by tinyobjloader, winding kept; normals, texture coordinates and materials ignored). `ref` locates the
 // reference in the job file for errors; meshes above max_triangles are refused.
 Mesh loadObjMesh(const std::filesystem::path& file, const FileLoc& ref, std::uint64_t max_triangles);
 

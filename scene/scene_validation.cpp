@@ -22,6 +22,11 @@ const T& itemAt(const std::vector<T>& v, std::size_t i) {
     return i < v.size() ? v[i] : empty;
 }
 
+std::string at(const FileLoc& loc) {
+    const std::string s = loc.toString();
+    return s.empty() ? s : s + ": ";
+}
+
 bool sane(double x) { return std::isfinite(x) && std::abs(x) <= kMaxCoordinate; }
 bool sane(const glm::dvec3& p) { return sane(p.x) && sane(p.y) && sane(p.z); }
 
@@ -154,7 +159,7 @@ std::vector<std::string> validateScene(const Scene& scene, const SceneLocations&
         const Object& o = scene.objects[i];
         const std::uint64_t degenerate = countDegenerateTriangles(o.mesh);
         if (degenerate > 0)
-            warnings.push_back(o.loc.toString() + ": " + describe(o, i) + " has " + std::to_string(degenerate) +
+            warnings.push_back(at(o.loc) + describe(o, i) + " has " + std::to_string(degenerate) +
                                " degenerate triangle(s) of " + std::to_string(o.mesh.triangles.size()) +
                                " (kept; they cover no area)");
         if (!isClosedManifold(o.mesh)) continue;
@@ -163,7 +168,7 @@ std::vector<std::string> validateScene(const Scene& scene, const SceneLocations&
             const auto [lo, hi] = worldBounds(o, key.time);
             const glm::dvec3& p = key.position;
             if (glm::all(glm::greaterThan(p, lo)) && glm::all(glm::lessThan(p, hi))) {
-                warnings.push_back(locAt(locations.camera_keys, k, no_loc).toString() + ": camera key " +
+                warnings.push_back(at(locAt(locations.camera_keys, k, no_loc)) + "camera key " +
                                    std::to_string(k) + " is inside the bounds of closed " + describe(o, i) +
                                    " (defined at " + o.loc.toString() + ")");
             }

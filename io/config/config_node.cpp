@@ -143,9 +143,11 @@ std::string canonicalText(const ConfigNode& node) {
     return out;
 }
 
-std::string configHash(const ConfigNode& node) {
+std::string configHash(const ConfigNode& node) { return fnv1a64Hex(canonicalText(node)); }
+
+std::string fnv1a64Hex(const std::string& text) {
     std::uint64_t h = 0xcbf29ce484222325ull;
-    for (const unsigned char c : canonicalText(node)) {
+    for (const unsigned char c : text) {
         h ^= c;
         h *= 0x100000001b3ull;
     }

@@ -59,7 +59,8 @@ const char* kindName(ConfigNode::Kind kind);
 // round-trip form, strings quoted and escaped. YAML and JSON spellings of one job give one text.
 std::string canonicalText(const ConfigNode& node);
 
-// FNV-1a 64-bit of canonicalText, as 16 lower-case hex digits.
+// FNV-1a 64-bit of text as 16 lower-case hex digits, and of canonicalText(node).
+std::string fnv1a64Hex(const std::string& text);
 std::string configHash(const ConfigNode& node);
 
 // 1-based line and column of a byte offset in text (columns count bytes).

@@ -47,7 +47,14 @@ void applyOverride(ConfigNode& root, const std::string& assignment) {
         start = end + 1;
     }
 
-    ConfigNode value = readYaml(assignment.substr(eq + 1), kSetFile);
+    ConfigNode value;
+    try {
+        value = readYaml(assignment.substr(eq + 1), kSetFile);
+    } catch (const Error& e) {
+        FileLoc loc = e.loc();
+        if (loc.line == 1) loc.column += static_cast<int>(eq + 1);
+        throw Error(e.code(), e.message(), loc);
+    }
     if (value.loc.line == 0) value.loc = setLoc(eq + 1);
     shiftColumns(value, static_cast<int>(eq + 1));
 

@@ -84,15 +84,9 @@ glm::dvec3 MapReader::vec3(std::string_view key, glm::dvec3 fallback, double lo,
 }
 
 void MapReader::finish() const {
-    for (std::size_t i = 0; i < used_.size(); ++i) {
-        if (used_[i]) continue;
-        std::string known;
-        for (std::size_t j = 0; j < used_.size(); ++j)
-            if (used_[j]) known += (known.empty() ? "" : ", ") + node_.entries[j].key;
-        throwConfigError(node_.entries[i].key_loc,
-                         "unknown key '" + keyPath(node_.entries[i].key) + "'" +
-                             (known.empty() ? std::string() : " (keys used here: " + known + ")"));
-    }
+    for (std::size_t i = 0; i < used_.size(); ++i)
+        if (!used_[i])
+            throwConfigError(node_.entries[i].key_loc, "unknown key '" + keyPath(node_.entries[i].key) + "'");
 }
 
 double asNumber(const ConfigNode& node, const std::string& what, double lo, double hi) {

@@ -1,5 +1,6 @@
 #include "io/config/yaml_reader.h"
 
+#include <algorithm>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -18,6 +19,11 @@ bool opensBlockScalar(const std::string& text, std::size_t begin, std::size_t en
                            (text[end - 1] >= '0' && text[end - 1] <= '9')))
         --end;
     return end > begin && (text[end - 1] == '|' || text[end - 1] == '>');
+}
+
+void note(YamlDepth& d, int depth, std::size_t offset) {
+    d.depth = std::max(d.depth, depth);
+    if (depth > kMaxNestingDepth && d.first_over_limit == std::string::npos) d.first_over_limit = offset;
 }
 
 }  // namespace
@@ -77,12 +83,12 @@ YamlDepth estimateYamlDepth(const std::string& text) {
                     quote = c;
             } else if (c == '[' || c == '{') {
                 ++flow;
-                if (line_depth + flow > worst.depth) worst = {line_depth + flow, j};
+                note(worst, line_depth + flow, j);
             } else if ((c == ']' || c == '}') && flow > 0) {
                 --flow;
             }
         }
-        if (line_depth + flow > worst.depth) worst = {line_depth + flow, i};
+        note(worst, line_depth + flow, i);
         pos = eol + 1;
     }
     return worst;
@@ -144,8 +150,8 @@ ConfigNode readYaml(const std::string& text, const std::string& file) {
     if (text.size() > kMaxDocumentBytes)
         throwConfigError(FileLoc{file, 0, 0}, "file is larger than " + std::to_string(kMaxDocumentBytes >> 20) + " MiB");
     const YamlDepth depth = estimateYamlDepth(text);
-    if (depth.depth > kMaxNestingDepth)
-        throwConfigError(locationOfOffset(file, text, depth.offset),
+    if (depth.first_over_limit != std::string::npos)
+        throwConfigError(locationOfOffset(file, text, depth.first_over_limit),
                          "nesting deeper than " + std::to_string(kMaxNestingDepth) + " levels");
     YAML::Node root;
     try {
@@ -158,7 +164,9 @@ ConfigNode readYaml(const std::string& text, const std::string& file) {
     try {
         return Converter(file).convert(root, 0);
     } catch (const YAML::Exception& e) {
-        throwConfigError(FileLoc{file, e.mark.line + 1, e.mark.column + 1}, "YAML error: " + e.msg);
+        const FileLoc loc = e.mark.is_null() ? FileLoc{file, 0, 0}
+                                             : FileLoc{file, e.mark.line + 1, e.mark.column + 1};
+        throwConfigError(loc, "YAML error: " + e.msg);
     }
 }
 

@@ -13,7 +13,7 @@ ConfigNode readYaml(const std::string& text, const std::string& file);
 // Conservative upper bound of the nesting depth of YAML text, and where it is reached; exposed for tests.
 struct YamlDepth {
     int depth = 0;
-    std::size_t offset = 0;
+    std::size_t first_over_limit = std::string::npos;  // offset where kMaxNestingDepth is first exceeded
 };
 YamlDepth estimateYamlDepth(const std::string& text);
 

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan+UBSan) in build-fuzz and runs the job loader fuzzer for
+# a bounded time, seeded with the shipped configs. Usage: scripts/fuzz.sh [seconds, default 60]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+CLIPBLUR_FUZZ=1 bash scripts/setup.sh
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCLIPBLUR_FUZZ=ON -DCLIPBLUR_SANITIZE=ON -DCLIPBLUR_BENCH=OFF >/dev/null
+cmake --build build-fuzz --target job_loader_fuzz -j "${CLIPBLUR_JOBS:-$(nproc)}"
+
+corpus=build-fuzz/corpus/job_loader
+mkdir -p "$corpus"
+find configs -name '*.yaml' -o -name '*.json' | grep -v /schema/ | while read -r f; do cp "$f" "$corpus/"; done
+# A JSON rendering of the demo job seeds the JSON side too.
+cp tests/fuzz/seeds/*.json "$corpus/" 2>/dev/null || true
+
+mkdir -p build-fuzz/artifacts
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  build-fuzz/tests/job_loader_fuzz "$corpus" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
+  -timeout=10 -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1

@@ -1,0 +1,390 @@
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "io/job_loader.h"
+#include "tests/io/config/config_test_util.h"
+
+namespace clipblur {
+
+using clipblur::testing::catchError;
+using clipblur::testing::testDir;
+using clipblur::testing::writeFile;
+
+namespace {
+
+const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+const char* kTriangleObjMoved = "v 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\nf 1 2 3\nf 2 4 3\n";
+
+const char* kYamlJob = R"(version: 1
+film: {width: 320, height: 200, background: [0.1, 0.2, 0.3]}
+camera:
+  focal_length: 50
+  film_height: 24
+  keys:
+    - {time: 0, position: [0, 1, -5], view: [0, 0, 1], up: [0, 1, 0]}
+    - {time: 1, position: [0, 1, -6], view: [0, 0.1, 1], up: [0.1, 1, 0]}
+shutter: {open: 0.25, close: 0.75}
+frames: {first: 3, last: 7, fps: 30}
+materials:
+  - {name: red, color: [1, 0, 0], two_sided: false}
+  - {name: check, color: 0.9, texture: {type: checker, color2: 0.1, scale: 0.5}}
+lights:
+  - {type: directional, direction: [0, -1, 0], intensity: 2}
+  - {type: point, position: [1, 2, 3], color: [1, 0.5, 0.25]}
+ambient: [0.05, 0.05, 0.1]
+objects:
+  - name: ground
+    material: check
+    primitive: {type: grid, size: [4, 2], divisions: [4, 2]}
+  - name: ball
+    material: red
+    primitive: {type: sphere, size: 1, segments: 8}
+    transform:
+      - {time: 0, translate: [0, 1, 0], rotate: {axis: [0, 1, 0], angle_deg: 0}, scale: 1}
+      - {time: 1, translate: [1, 1, 0], rotate: {axis: [0, 1, 0], angle_deg: 45}, scale: [1, 2, 1]}
+  - name: mesh
+    obj: tri.obj
+    deformation:
+      - {time: 0, obj: tri.obj}
+      - {time: 1, obj: tri_moved.obj}
+render:
+  method: stochastic
+  samples: 8
+  subframes: 12
+  max_subframes: 64
+  path_method: rk4
+  ode_steps: 5
+  visibility_rays: 2
+  shadows: true
+  seed: 18446744073709551615
+  tile_size: 16
+output: {path: out.exr, half: false, png_preview: true, aovs: [motion, depth], stats: s.json}
+)";
+
+const char* kJsonJob = R"({
+  "version": 1,
+  "film": {"width": 320, "height": 200, "background": [0.1, 0.2, 0.3]},
+  "camera": {
+    "focal_length": 50, "film_height": 24,
+    "keys": [
+      {"time": 0, "position": [0, 1, -5], "view": [0, 0, 1], "up": [0, 1, 0]},
+      {"time": 1, "position": [0, 1, -6], "view": [0, 0.1, 1], "up": [0.1, 1, 0]}
+    ]
+  },
+  "shutter": {"open": 0.25, "close": 0.75},
+  "frames": {"first": 3, "last": 7, "fps": 30},
+  "materials": [
+    {"name": "red", "color": [1, 0, 0], "two_sided": false},
+    {"name": "check", "color": 0.9, "texture": {"type": "checker", "color2": 0.1, "scale": 0.5}}
+  ],
+  "lights": [
+    {"type": "directional", "direction": [0, -1, 0], "intensity": 2},
+    {"type": "point", "position": [1, 2, 3], "color": [1, 0.5, 0.25]}
+  ],
+  "ambient": [0.05, 0.05, 0.1],
+  "objects": [
+    {"name": "ground", "material": "check", "primitive": {"type": "grid", "size": [4, 2], "divisions": [4, 2]}},
+    {"name": "ball", "material": "red", "primitive": {"type": "sphere", "size": 1, "segments": 8},
+     "transform": [
+       {"time": 0, "translate": [0, 1, 0], "rotate": {"axis": [0, 1, 0], "angle_deg": 0}, "scale": 1},
+       {"time": 1, "translate": [1, 1, 0], "rotate": {"axis": [0, 1, 0], "angle_deg": 45}, "scale": [1, 2, 1]}
+     ]},
+    {"name": "mesh", "obj": "tri.obj",
+     "deformation": [{"time": 0, "obj": "tri.obj"}, {"time": 1, "obj": "tri_moved.obj"}]}
+  ],
+  "render": {"method": "stochastic", "samples": 8, "subframes": 12, "max_subframes": 64, "path_method": "rk4",
+             "ode_steps": 5, "visibility_rays": 2, "shadows": true, "seed": 18446744073709551615, "tile_size": 16},
+  "output": {"path": "out.exr", "half": false, "png_preview": true, "aovs": ["motion", "depth"], "stats": "s.json"}
+}
+)";
+
+// Minimal valid job; `extra` lines are appended at top level.
+std::string minimalYaml(const std::string& extra = "") {
+    return "version: 1\n"
+           "camera:\n"
+           "  keys:\n"
+           "    - {time: 0, position: [0, 0, -5]}\n"
+           "objects:\n"
+           "  - primitive: {type: box}\n" +
+           extra;
+}
+
+void expectVec(const glm::dvec3& a, const glm::dvec3& b) {
+    EXPECT_EQ(a.x, b.x);
+    EXPECT_EQ(a.y, b.y);
+    EXPECT_EQ(a.z, b.z);
+}
+
+}  // namespace
+
+TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
+    const auto dir = testDir();
+    writeFile(dir / "tri.obj", kTriangleObj);
+    writeFile(dir / "tri_moved.obj", kTriangleObjMoved);
+    const RenderJob y = loadJob(writeFile(dir / "job.yaml", kYamlJob));
+    const RenderJob j = loadJob(writeFile(dir / "job.json", kJsonJob));
+
+    for (const RenderJob* job : {&y, &j}) {
+        const Scene& s = job->scene;
+        EXPECT_EQ(s.film.width, 320);
+        EXPECT_EQ(s.film.height, 200);
+        expectVec(s.film.background, {0.1, 0.2, 0.3});
+        // vfov = 2 atan(24 / (2 * 50)) in degrees.
+        EXPECT_NEAR(s.camera.vfov_degrees, 2.0 * std::atan(0.24) * 180.0 / M_PI, 1e-12);
+        ASSERT_EQ(s.camera.keys.size(), 2u);
+        expectVec(s.camera.keys[1].position, {0, 1, -6});
+        expectVec(s.camera.keys[1].up, {0.1, 1, 0});
+        EXPECT_EQ(job->shutter.open, 0.25);
+        EXPECT_EQ(job->shutter.close, 0.75);
+        EXPECT_EQ(job->frames.first, 3);
+        EXPECT_EQ(job->frames.last, 7);
+        EXPECT_EQ(job->frames.fps, 30.0);
+        ASSERT_EQ(s.materials.size(), 2u);
+        EXPECT_FALSE(s.materials[0].two_sided);
+        EXPECT_EQ(s.materials[1].texture.kind, Texture::Kind::Checker);
+        EXPECT_EQ(s.materials[1].texture.scale, 0.5);
+        expectVec(s.materials[1].base_color, glm::dvec3(0.9));
+        ASSERT_EQ(s.lights.size(), 2u);
+        EXPECT_EQ(s.lights[0].kind, Light::Kind::Directional);
+        EXPECT_EQ(s.lights[0].intensity, 2.0);
+        EXPECT_EQ(s.lights[1].kind, Light::Kind::Point);
+        expectVec(s.lights[1].position, {1, 2, 3});
+        expectVec(s.ambient, {0.05, 0.05, 0.1});
+        ASSERT_EQ(s.objects.size(), 3u);
+        EXPECT_EQ(s.objects[0].material, 1);
+        EXPECT_EQ(s.objects[0].mesh.triangles.size(), 16u);  // 4 x 2 cells, 2 triangles each
+        EXPECT_EQ(s.objects[1].material, 0);
+        ASSERT_EQ(s.objects[1].transform.size(), 2u);
+        // 45 degrees about y: w = cos(22.5 deg), y = sin(22.5 deg).
+        EXPECT_NEAR(s.objects[1].transform[1].rotate.w, std::cos(M_PI / 8), 1e-15);
+        EXPECT_NEAR(s.objects[1].transform[1].rotate.y, std::sin(M_PI / 8), 1e-15);
+        expectVec(s.objects[1].transform[1].scale, {1, 2, 1});
+        EXPECT_EQ(s.objects[2].mesh.triangles.size(), 2u);
+        ASSERT_EQ(s.objects[2].deformation.size(), 2u);
+        expectVec(s.objects[2].deformation[1].positions[3], {1, 1, 1});
+        EXPECT_EQ(job->render.method, Method::Stochastic);
+        EXPECT_EQ(job->render.samples, 8);
+        EXPECT_EQ(job->render.subframes, 12);
+        EXPECT_EQ(job->render.max_subframes, 64);
+        EXPECT_EQ(job->render.path_method, PathMethod::RK4);
+        EXPECT_EQ(job->render.ode_steps, 5);
+        EXPECT_EQ(job->render.visibility_rays, 2);
+        EXPECT_TRUE(job->render.shadows);
+        EXPECT_EQ(job->render.seed, 18446744073709551615ull);
+        EXPECT_EQ(job->render.tile_size, 16);
+        EXPECT_EQ(job->output.path, "out.exr");
+        EXPECT_FALSE(job->output.half);
+        EXPECT_TRUE(job->output.png_preview);
+        EXPECT_TRUE(job->output.aov_depth);
+        EXPECT_FALSE(job->output.aov_coverage);
+        EXPECT_TRUE(job->output.aov_motion);
+        EXPECT_EQ(job->output.stats_path, "s.json");
+    }
+    EXPECT_EQ(y.scene.objects[1].mesh.positions, j.scene.objects[1].mesh.positions);
+    EXPECT_EQ(y.config_hash, j.config_hash);
+}
+
+TEST(JobLoader, DefaultsWhenOptionalSectionsAreAbsent) {
+    const RenderJob job = loadJobFromText(minimalYaml(), "/nonexistent/m.yaml");
+    const RenderJob defaults;
+    EXPECT_EQ(job.scene.film.width, defaults.scene.film.width);
+    EXPECT_EQ(job.render.samples, defaults.render.samples);
+    EXPECT_EQ(job.render.subframes, 0);
+    ASSERT_EQ(job.scene.materials.size(), 1u);
+    EXPECT_EQ(job.scene.objects[0].name, "object0");
+    EXPECT_EQ(job.scene.objects[0].mesh.triangles.size(), 12u);
+}
+
+// Each error class, with the exact location, in both front-ends.
+// `at` is a substring that occurs once in `text`; the error must point at its first character.
+// The expected line and column are counted here from the text, independently of the readers.
+struct ErrorCase {
+    const char* name;
+    std::string file;
+    std::string text;
+    ExitCode code;
+    std::string at;
+    const char* message_part;
+};
+
+std::pair<int, int> lineColumnOf(const std::string& text, const std::string& at) {
+    const std::size_t offset = text.find(at);
+    EXPECT_NE(offset, std::string::npos) << at;
+    EXPECT_EQ(text.find(at, offset + 1), std::string::npos) << "marker not unique: " << at;
+    int line = 1, column = 1;
+    for (std::size_t i = 0; i < offset; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    return {line, column};
+}
+
+class JobErrors : public ::testing::TestWithParam<ErrorCase> {};
+
+TEST_P(JobErrors, ReportedAtLocation) {
+    const ErrorCase& c = GetParam();
+    const Error e = catchError([&] { loadJobFromText(c.text, c.file); });
+    EXPECT_EQ(e.code(), c.code) << e.what();
+    EXPECT_EQ(e.loc().file, c.file) << e.what();
+    const auto [line, column] = lineColumnOf(c.text, c.at);
+    EXPECT_EQ(e.loc().line, line) << e.what();
+    EXPECT_EQ(e.loc().column, column) << e.what();
+    EXPECT_NE(e.message().find(c.message_part), std::string::npos) << e.what();
+}
+
+const std::string kBox = "  - primitive: {type: box}\n";
+const std::string kCam = "camera:\n  keys:\n    - {time: 0, position: [0, 0, -5]}\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Yaml, JobErrors,
+    ::testing::Values(
+        ErrorCase{"UnknownKey", "e.yaml", minimalYaml("film: {widht: 3}\n"), ExitCode::Config, "widht", "unknown key 'film.widht'"},
+        ErrorCase{"WrongType", "e.yaml", minimalYaml("film: {width: wide}\n"), ExitCode::Config, "wide", "must be an integer"},
+        ErrorCase{"QuotedNumber", "e.yaml", minimalYaml("render: {samples: '4'}\n"), ExitCode::Config, "'4'", "must be an integer"},
+        ErrorCase{"MissingRequired", "e.yaml", "version: 1\nobjects:\n" + kBox, ExitCode::Config, "version", "missing required key 'camera'"},
+        ErrorCase{"MissingRequiredNested", "e.yaml", "version: 1\ncamera: {vfov: 30}\nobjects:\n" + kBox, ExitCode::Config, "{vfov", "missing required key 'camera.keys'"},
+        ErrorCase{"BadVersion", "e.yaml", "version: 2\n", ExitCode::Config, "2", "version"},
+        ErrorCase{"OutOfRange", "e.yaml", minimalYaml("shutter: {open: 1.5}\n"), ExitCode::Config, "1.5", "must be in [0, 1]"},
+        ErrorCase{"CloseBeforeOpen", "e.yaml", minimalYaml("shutter: {open: 0.5, close: 0.25}\n"), ExitCode::Config, "0.25", "not be before"},
+        ErrorCase{"HugeWidth", "e.yaml", minimalYaml("film: {width: 100000}\n"), ExitCode::Config, "100000", "16384"},
+        ErrorCase{"MeshTooBig", "e.yaml", "version: 1\n" + kCam + "objects:\n  - primitive: {type: grid, divisions: 4096}\n",
+                  ExitCode::Config, "{type: grid", "triangles"},
+        ErrorCase{"DuplicateKey", "e.yaml", minimalYaml("film: {width: 3, width: 4}\n"), ExitCode::Config, "width: 4", "duplicate key"},
+        ErrorCase{"UnknownEnum", "e.yaml", minimalYaml("render: {method: magic}\n"), ExitCode::Config, "magic", "one of clipped"},
+        ErrorCase{"SubframesAboveMax", "e.yaml", minimalYaml("render: {max_subframes: 8, subframes: 9}\n"), ExitCode::Config, "9}", "[1, 8]"},
+        ErrorCase{"UnknownMaterial", "e.yaml", "version: 1\n" + kCam + "objects:\n  - {primitive: {type: box}, material: gold}\n", ExitCode::Config, "gold", "unknown material"},
+        ErrorCase{"NonFinite", "e.yaml", minimalYaml("ambient: .nan\n"), ExitCode::Config, ".nan", "finite"},
+        ErrorCase{"UnsortedCameraKeys", "e.yaml", "version: 1\ncamera:\n  keys:\n    - {time: 1}\n    - {time: 0.5}\nobjects:\n" + kBox, ExitCode::Scene, "{time: 0.5}", "sorted"},
+        ErrorCase{"UnsortedTransformKeys", "e.yaml", "version: 1\n" + kCam + "objects:\n  - primitive: {type: box}\n    transform:\n      - {time: 0}\n      - {time: 0, translate: [1, 0, 0]}\n",
+                  ExitCode::Scene, "{time: 0, translate", "sorted"},
+        ErrorCase{"ViewParallelToUp", "e.yaml", "version: 1\ncamera:\n  keys:\n    - {view: [0, 2, 0], position: [0, 0, -5]}\nobjects:\n" + kBox, ExitCode::Scene, "{view", "parallel"},
+        ErrorCase{"ZeroView", "e.yaml", "version: 1\ncamera:\n  keys:\n    - {view: [0, 0, 0]}\nobjects:\n" + kBox, ExitCode::Config, "[0, 0, 0]", "zero vector"},
+        ErrorCase{"EmptyScene", "e.yaml", "version: 1\n" + kCam + "objects: []\n", ExitCode::Scene, "[]", "no objects"},
+        ErrorCase{"MissingObj", "e.yaml", "version: 1\n" + kCam + "objects:\n  - obj: nowhere.obj\n", ExitCode::Scene, "nowhere.obj", "nowhere.obj"},
+        ErrorCase{"PrimitiveAndObj", "e.yaml", "version: 1\n" + kCam + "objects:\n  - {primitive: {type: box}, obj: x.obj}\n", ExitCode::Config, "x.obj", "both"},
+        ErrorCase{"LightKeyOfOtherType", "e.yaml", minimalYaml("lights: [{type: point, position: [0, 0, 0], direction: [0, 0, 1]}]\n"), ExitCode::Config, "direction", "unknown key 'lights[0].direction'"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+const std::string kJsonHead = "{\"version\": 1,\n \"camera\": {\"keys\": [{\"position\": [0, 0, -5]}]},\n";
+const std::string kJsonBox = " \"objects\": [{\"primitive\": {\"type\": \"box\"}}]";
+
+INSTANTIATE_TEST_SUITE_P(
+    Json, JobErrors,
+    ::testing::Values(
+        ErrorCase{"UnknownKey", "e.json", kJsonHead + " \"objects\": [{\"primitive\": {\"type\": \"box\"}, \"colour\": 1}]}", ExitCode::Config, "\"colour\"", "unknown key 'objects[0].colour'"},
+        ErrorCase{"WrongType", "e.json", kJsonHead + " \"objects\": [{\"primitive\": {\"type\": \"box\", \"size\": \"2\"}}]}", ExitCode::Config, "\"2\"", "must be a number"},
+        ErrorCase{"MissingRequired", "e.json", "{\"version\": 1,\n \"objects\": []}", ExitCode::Config, "{\"version\"", "missing required key 'camera'"},
+        ErrorCase{"OutOfRange", "e.json", kJsonHead + " \"objects\": [{\"primitive\": {\"type\": \"sphere\", \"segments\": 2}}]}", ExitCode::Config, "2}", "must be in [3, 4096]"},
+        ErrorCase{"HugeWidth", "e.json", kJsonHead + " \"film\": {\"width\": 16385},\n" + kJsonBox + "}", ExitCode::Config, "16385", "16384"},
+        ErrorCase{"DuplicateKey", "e.json", kJsonHead + kJsonBox + ",\n \"objects\": []}", ExitCode::Config, "\"objects\": []", "duplicate key"},
+        ErrorCase{"Syntax", "e.json", kJsonHead + " \"objects\": @}", ExitCode::Config, "@", "JSON syntax error"},
+        ErrorCase{"UnsortedCameraKeys", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"time\": 2},\n   {\"time\": 1}]},\n" + kJsonBox + "}", ExitCode::Scene, "{\"time\": 1}", "sorted"},
+        ErrorCase{"ViewParallelToUp", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"view\": [0, -1, 0]}]},\n" + kJsonBox + "}", ExitCode::Scene, "{\"view\"", "parallel"},
+        ErrorCase{"BoolAsString", "e.json", kJsonHead + " \"render\": {\"shadows\": \"true\"},\n" + kJsonBox + "}", ExitCode::Config, "\"true\"", "true or false"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(JobLoader, LargestFilmIsAccepted) {
+    // 16384 x 16384 is exactly 2^28 pixels: both caps are inclusive.
+    const RenderJob job = loadJobFromText(minimalYaml("film: {width: 16384, height: 16384}\n"), "big.yaml");
+    EXPECT_EQ(static_cast<long long>(job.scene.film.width) * job.scene.film.height, 1ll << 28);
+}
+
+TEST(JobLoader, AbsurdObjCoordinateIsASceneErrorAtTheObject) {
+    const auto dir = testDir();
+    // tinyobjloader reads "nan" as 0, so overflow (1e400 -> inf) and |x| > 1e8 are what an OBJ can carry.
+    writeFile(dir / "inf.obj", "v 0 0 0\nv 1e400 0 0\nv 0 1 0\nf 1 2 3\n");
+    writeFile(dir / "far.obj", "v 0 0 0\nv 2e8 0 0\nv 0 1 0\nf 1 2 3\n");
+    for (const char* obj : {"inf.obj", "far.obj"}) {
+        const auto job = writeFile(dir / "j.yaml", "version: 1\ncamera: {keys: [{}]}\nobjects:\n  - name: bad\n    obj: " +
+                                                       std::string(obj) + "\n");
+        const Error e = catchError([&] { loadJob(job); });
+        EXPECT_EQ(e.code(), ExitCode::Scene) << e.what();
+        EXPECT_EQ(e.loc().line, 4) << e.what();
+        EXPECT_EQ(e.loc().column, 5) << e.what();
+    }
+}
+
+TEST(JobLoader, DeformationWithOtherTopologyIsRefused) {
+    const auto dir = testDir();
+    writeFile(dir / "tri.obj", kTriangleObj);
+    writeFile(dir / "one.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const auto job = writeFile(dir / "j.yaml", "version: 1\ncamera: {keys: [{}]}\nobjects:\n  - obj: tri.obj\n"
+                                               "    deformation:\n      - {time: 1, obj: one.obj}\n");
+    const Error e = catchError([&] { loadJob(job); });
+    EXPECT_EQ(e.code(), ExitCode::Scene);
+    EXPECT_EQ(e.loc().toString(), (dir / "j.yaml").string() + ":6:24");
+    EXPECT_NE(e.message().find("topology"), std::string::npos);
+}
+
+TEST(JobLoader, DegenerateTrianglesAreKeptAndReported) {
+    const auto dir = testDir();
+    // Triangle 2 repeats a vertex, triangle 3 is collinear.
+    writeFile(dir / "d.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\nf 1 2 4\n");
+    const RenderJob job = loadJob(writeFile(dir / "j.yaml", "version: 1\ncamera: {keys: [{position: [0, 0, -3]}]}\nobjects:\n  - obj: d.obj\n"));
+    EXPECT_EQ(job.scene.objects[0].mesh.triangles.size(), 3u);
+    ASSERT_EQ(job.warnings.size(), 1u);
+    EXPECT_NE(job.warnings[0].find("2 degenerate"), std::string::npos) << job.warnings[0];
+}
+
+TEST(JobLoader, CameraInsideClosedObjectWarns) {
+    const RenderJob job = loadJobFromText(
+        "version: 1\ncamera: {keys: [{position: [0.1, 0, 0]}]}\nobjects:\n  - primitive: {type: box, size: 2}\n", "w.yaml");
+    ASSERT_EQ(job.warnings.size(), 1u);
+    EXPECT_NE(job.warnings[0].find("w.yaml:2:17: camera key 0 is inside"), std::string::npos) << job.warnings[0];
+    // Just outside the box: no warning.
+    EXPECT_TRUE(loadJobFromText("version: 1\ncamera: {keys: [{position: [0, 0, -1.01]}]}\nobjects:\n"
+                                "  - primitive: {type: box, size: 2}\n", "w.yaml")
+                    .warnings.empty());
+}
+
+TEST(JobLoader, OverridesApplyBeforeValidationAndChangeTheHash) {
+    const RenderJob base = loadJobFromText(minimalYaml(), "o.yaml");
+    const RenderJob job = loadJobFromText(minimalYaml(), "o.yaml", {"render.samples=64", "film.width=320"});
+    EXPECT_EQ(job.render.samples, 64);
+    EXPECT_EQ(job.scene.film.width, 320);
+    EXPECT_NE(job.config_hash, base.config_hash);
+    const Error bad_type = catchError([] { loadJobFromText(minimalYaml(), "o.yaml", {"render.samples=many"}); });
+    EXPECT_EQ(bad_type.loc().toString(), "<--set>:1:16");
+    const Error unknown = catchError([] { loadJobFromText(minimalYaml(), "o.yaml", {"render.smaples=4"}); });
+    EXPECT_EQ(unknown.loc().toString(), "<--set>:1:8");
+    EXPECT_NE(unknown.message().find("unknown key 'render.smaples'"), std::string::npos);
+}
+
+TEST(JobLoader, EveryShippedConfigLoads) {
+    int count = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(std::string(CLIPBLUR_SOURCE_DIR) + "/configs")) {
+        const auto ext = entry.path().extension();
+        if (entry.path().parent_path().filename() == "schema" || (ext != ".yaml" && ext != ".json")) continue;
+        SCOPED_TRACE(entry.path().string());
+        const RenderJob job = loadJob(entry.path());
+        EXPECT_TRUE(job.warnings.empty());
+        EXPECT_EQ(job.render.method, Method::Clipped);
+        ++count;
+    }
+    EXPECT_GE(count, 6);
+}
+
+TEST(ValidateCommand, ExitCodesAndSummary) {
+    const auto dir = testDir();
+    const std::string bin = CLIPBLUR_BINARY;
+    const auto run = [&](const std::string& args) {
+        const int status = std::system((bin + " validate " + args + " > " + (dir / "out.txt").string() + " 2>&1").c_str());
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    };
+    EXPECT_EQ(run(std::string(CLIPBLUR_SOURCE_DIR) + "/configs/default.yaml"), 0);
+    std::ifstream in(dir / "out.txt");
+    const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(out.find("objects:      3"), std::string::npos) << out;
+    EXPECT_EQ(run(writeFile(dir / "c.yaml", minimalYaml("film: {widht: 3}\n")).string()), 3);
+    EXPECT_EQ(run(writeFile(dir / "s.yaml", "version: 1\ncamera: {keys: [{}]}\nobjects: []\n").string()), 4);
+    EXPECT_EQ(run(writeFile(dir / "ok.yaml", minimalYaml()).string() + " --set render.samples=0"), 3);
+}
+
+}  // namespace clipblur
