@@ -289,7 +289,7 @@ void readRender(MapReader map, RenderSettings& r) {
     if (const ConfigNode* p = map.optional("path_method"))
         r.path_method = static_cast<PathMethod>(asChoice(*p, "render.path_method", {"exact", "euler", "rk4"}));
     r.ode_steps = map.integer("ode_steps", r.ode_steps, 1, kMaxOdeSteps);
-    r.visibility_rays = map.integer("visibility_rays", r.visibility_rays, 1, kMaxVisibilityRays);
+    r.visibility_rays = map.integer("visibility_rays", r.visibility_rays, 0, kMaxVisibilityRays);
     r.shadows = map.boolean("shadows", r.shadows);
     if (const ConfigNode* s = map.optional("seed")) r.seed = asUnsigned(*s, "render.seed");
     r.tile_size = map.integer("tile_size", r.tile_size, 1, kMaxTileSize);
