@@ -13,4 +13,9 @@ using Action = std::function<int()>;
 // `clipblur validate JOB [--set key=value]...`: loads and checks a job, prints a summary.
 Action addValidateCommand(CLI::App& app);
 
+// `clipblur render JOB [--set k=v]... [--threads N] [--frames A-B] [--out PATH] [--stats PATH]
+// [--progress auto|bar|lines|none]`: renders every frame to OpenEXR (plus stats JSON and an optional PNG
+// preview). SIGINT/SIGTERM stop at the next tile without writing the frame; exit code 130.
+Action addRenderCommand(CLI::App& app);
+
 }  // namespace clipblur::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     };
 
     add(cli::addValidateCommand);
+    add(cli::addRenderCommand);
 
     try {
         app.parse(argc, argv);
