@@ -16,4 +16,9 @@ Action addValidateCommand(CLI::App& app);
 // clipblur paths: image-plane vertex paths of the paper's Table 1 (section 2.4).
 Action addPathsCommand(CLI::App& app);
 
+// `clipblur render JOB [--set k=v]... [--threads N] [--frames A-B] [--out PATH] [--stats PATH]
+// [--progress auto|bar|lines|none]`: renders every frame to OpenEXR (plus stats JSON and an optional PNG
+// preview). SIGINT/SIGTERM stop at the next tile without writing the frame; exit code 130.
+Action addRenderCommand(CLI::App& app);
+
 }  // namespace clipblur::cli

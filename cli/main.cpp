@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     add(cli::addPathsCommand);
 
     add(cli::addValidateCommand);
+    add(cli::addRenderCommand);
 
     try {
         app.parse(argc, argv);

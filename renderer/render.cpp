@@ -15,7 +15,7 @@ const char* methodName(Method method) {
         case Method::Clipped: return "clipped";
         case Method::Stochastic: return "stochastic";
         case Method::Accumulation: return "accumulation";
-        case Method::Frame0Only: return "frame0";
+        case Method::Frame0Only: return "frame0_only";
     }
     return "unknown";
 }

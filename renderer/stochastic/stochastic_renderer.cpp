@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "renderer/camera_path.h"
 #include "renderer/sampling/pixel_samples.h"
 #include "renderer/shading/shading.h"
 #include "renderer/tiles.h"
@@ -60,8 +61,9 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     const double build_seconds = secondsSince(start);
 
     const Projection projection(width, height, scene.camera.vfov_degrees);
-    const CameraFrame camera_open = evalCamera(scene.camera, t0);
-    const CameraFrame camera_close = evalCamera(scene.camera, t1);
+    const CameraPath camera_path(scene.camera);
+    const CameraFrame camera_open = camera_path.at(t0);
+    const CameraFrame camera_close = camera_path.at(t1);
     const TileGrid grid(width, height, job.render.tile_size);
     const OutputSettings& out = job.output;
 
@@ -106,7 +108,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                     double motion_count = 0.0;
                     for (const SpaceTimeSample& s : pixel_samples) {
                         const double t = t0 + (t1 - t0) * s.time;
-                        const CameraFrame camera = evalCamera(scene.camera, t);
+                        const CameraFrame camera = camera_path.at(t);
                         const glm::dvec2 p = projection.toImagePlane(glm::dvec2(x + s.x, y + s.y));
                         // Unnormalised, with e3.dir = 1: the hit distance is the camera depth.
                         const glm::dvec3 dir = camera.e3 + p.x * camera.e1 + p.y * camera.e2;

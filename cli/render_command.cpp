@@ -1,0 +1,201 @@
+#include <atomic>
+#include <csignal>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <tbb/global_control.h>
+
+#include "cli/commands.h"
+#include "io/image_writer.h"
+#include "io/job_loader.h"
+#include "io/output_path.h"
+#include "io/stats_writer.h"
+#include "renderer/render.h"
+#include "scene/error.h"
+
+namespace clipblur::cli {
+
+namespace {
+
+// Set from the signal handler; a lock-free atomic store is async-signal-safe.
+std::atomic<bool> g_cancel{false};
+
+extern "C" void onStopSignal(int) { g_cancel.store(true); }
+
+// Installs SIGINT/SIGTERM handlers for the lifetime of the object and restores the previous ones.
+class StopSignals {
+public:
+    StopSignals() {
+        g_cancel.store(false);
+        struct sigaction action {};
+        action.sa_handler = &onStopSignal;
+        sigemptyset(&action.sa_mask);
+        sigaction(SIGINT, &action, &previous_int_);
+        sigaction(SIGTERM, &action, &previous_term_);
+    }
+    ~StopSignals() {
+        sigaction(SIGINT, &previous_int_, nullptr);
+        sigaction(SIGTERM, &previous_term_, nullptr);
+    }
+    StopSignals(const StopSignals&) = delete;
+    StopSignals& operator=(const StopSignals&) = delete;
+
+private:
+    struct sigaction previous_int_ {};
+    struct sigaction previous_term_ {};
+};
+
+const char* methodName(Method m) {
+    switch (m) {
+        case Method::Clipped: return "clipped";
+        case Method::Stochastic: return "stochastic";
+        case Method::Accumulation: return "accumulation";
+        case Method::Frame0Only: return "frame0_only";
+    }
+    return "?";
+}
+
+// "A" or "A-B", frames possibly negative ("-3--1").
+std::pair<int, int> parseFrames(const std::string& text) {
+    static const std::regex pattern(R"(^\s*(-?\d+)\s*(?:-\s*(-?\d+))?\s*$)");
+    std::smatch m;
+    if (!std::regex_match(text, m, pattern))
+        throw Error(ExitCode::Usage, "--frames expects A or A-B, got '" + text + "'");
+    try {
+        const int first = std::stoi(m[1].str());
+        const int last = m[2].matched ? std::stoi(m[2].str()) : first;
+        if (last < first) throw Error(ExitCode::Usage, "--frames " + text + ": the last frame precedes the first");
+        return {first, last};
+    } catch (const std::out_of_range&) {
+        throw Error(ExitCode::Usage, "--frames " + text + ": frame number out of range");
+    }
+}
+
+enum class ProgressStyle { Bar, Lines, None };
+
+ProgressStyle parseProgress(const std::string& text) {
+    if (text == "bar") return ProgressStyle::Bar;
+    if (text == "lines") return ProgressStyle::Lines;
+    if (text == "none") return ProgressStyle::None;
+    return ::isatty(STDERR_FILENO) ? ProgressStyle::Bar : ProgressStyle::Lines;  // auto
+}
+
+// Progress on stderr; calls arrive serialised from the renderer's worker threads.
+class ProgressPrinter {
+public:
+    ProgressPrinter(ProgressStyle style, int frame) : style_(style), frame_(frame) {}
+
+    void operator()(long long done, long long total) {
+        if (total <= 0) return;
+        const int percent = static_cast<int>(100 * done / total);
+        if (style_ == ProgressStyle::Bar) {
+            const int width = 40;
+            const int filled = static_cast<int>(width * done / total);
+            std::cerr << "\rframe " << frame_ << " [" << std::string(static_cast<std::size_t>(filled), '#')
+                      << std::string(static_cast<std::size_t>(width - filled), ' ') << "] " << percent << "%"
+                      << (done == total ? "\n" : "") << std::flush;
+        } else if (style_ == ProgressStyle::Lines && percent / 10 > last_decile_) {
+            // Log files get one line per 10%, not one per tile.
+            last_decile_ = percent / 10;
+            std::cerr << "frame " << frame_ << ": " << percent << "% (" << done << "/" << total << " tiles)\n";
+        }
+    }
+
+private:
+    ProgressStyle style_;
+    int frame_;
+    int last_decile_ = -1;
+};
+
+std::string pngPathFor(const std::string& image_path) {
+    std::filesystem::path p(image_path);
+    p.replace_extension(".png");
+    return p.string();
+}
+
+}  // namespace
+
+Action addRenderCommand(CLI::App& app) {
+    struct Options {
+        std::string job;
+        std::vector<std::string> overrides;
+        int threads = 0;
+        std::string frames;
+        std::string out;
+        std::string stats;
+        std::string progress = "auto";
+    };
+    auto opts = std::make_shared<Options>();
+    CLI::App* sub = app.add_subcommand("render", "Render the frames of a job to OpenEXR");
+    sub->add_option("job", opts->job, "Job file (.yaml, .yml or .json)")->required();
+    sub->add_option("--set", opts->overrides, "Override a setting: key.path=value (repeatable)")
+        ->allow_extra_args(false);
+    sub->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+    sub->add_option("--frames", opts->frames, "Frame range A-B (or one frame A), overriding the job's");
+    sub->add_option("--out", opts->out, "Output image path; #### is replaced by the zero-padded frame");
+    sub->add_option("--stats", opts->stats, "Stats JSON path (default: beside the image); #### allowed");
+    sub->add_option("--progress", opts->progress, "Progress display")
+        ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
+
+    return [opts]() {
+        RenderJob job = loadJob(opts->job, opts->overrides);
+        if (!opts->frames.empty()) std::tie(job.frames.first, job.frames.last) = parseFrames(opts->frames);
+        const std::string image_pattern = opts->out.empty() ? job.output.path : opts->out;
+        const std::string stats_pattern = opts->stats.empty() ? job.output.stats_path : opts->stats;
+        // Resolve every path before rendering so a bad pattern fails before any work is done.
+        for (int f = job.frames.first; f <= job.frames.last; ++f) {
+            outputPathForFrame(image_pattern, f, job.frames.first, job.frames.last);
+            if (!stats_pattern.empty()) outputPathForFrame(stats_pattern, f, job.frames.first, job.frames.last);
+        }
+
+        std::optional<tbb::global_control> limit;
+        if (opts->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, opts->threads);
+        const int threads =
+            static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+        const ProgressStyle style = parseProgress(opts->progress);
+
+        StopSignals signals;
+        for (int frame = job.frames.first; frame <= job.frames.last; ++frame) {
+            ProgressPrinter printer(style, frame);
+            RenderCallbacks callbacks;
+            callbacks.cancel = &g_cancel;
+            if (style != ProgressStyle::None) callbacks.progress = [&printer](long long d, long long t) { printer(d, t); };
+            RenderResult result = renderFrame(job, frame, callbacks);
+            if (g_cancel.load()) throw Error(ExitCode::Interrupted, "interrupted; frame " + std::to_string(frame) + " not written");
+
+            const std::string image_path = outputPathForFrame(image_pattern, frame, job.frames.first, job.frames.last);
+            ImageMetadata meta;
+            meta.method = methodName(job.render.method);
+            if (job.render.method == Method::Stochastic || job.render.method == Method::Accumulation)
+                meta.samples = job.render.samples;
+            if (const auto it = result.stats.counts.find("subframes"); it != result.stats.counts.end())
+                meta.subframes = static_cast<int>(it->second);
+            meta.seed = job.render.seed;
+            meta.config_hash = job.config_hash;
+            if (const auto it = result.stats.seconds.find("total"); it != result.stats.seconds.end())
+                meta.render_seconds = it->second;
+            writeExr(image_path, result.image, meta, job.output.half);
+            std::cout << "frame " << frame << ": wrote " << image_path;
+            if (job.output.png_preview) {
+                const std::string png = pngPathFor(image_path);
+                writePngPreview(png, result.image);
+                std::cout << " and " << png;
+            }
+            const std::string stats_path =
+                stats_pattern.empty() ? defaultStatsPath(image_path)
+                                      : outputPathForFrame(stats_pattern, frame, job.frames.first, job.frames.last);
+            writeStats(stats_path, statsToJson(result.stats, frame, image_path, threads));
+            std::cout << " (stats " << stats_path << ")\n" << std::flush;
+        }
+        return 0;
+    };
+}
+
+}  // namespace clipblur::cli

@@ -1,0 +1,26 @@
+#include "renderer/camera_path.h"
+
+#include <algorithm>
+
+namespace clipblur {
+
+CameraPath::CameraPath(const Camera& camera) {
+    for (const CameraKey& k : camera.keys) {
+        times_.push_back(k.time);
+        frames_.push_back(makeCameraFrame(k.position, k.view, k.up));
+    }
+    for (std::size_t i = 0; i + 1 < frames_.size(); ++i) segments_.emplace_back(frames_[i], frames_[i + 1]);
+}
+
+CameraFrame CameraPath::at(double t) const {
+    // Same branches and arithmetic as evalCamera.
+    if (frames_.empty()) return {};
+    if (frames_.size() == 1 || t <= times_.front()) return frames_.front();
+    if (t >= times_.back()) return frames_.back();
+    const auto next = std::upper_bound(times_.begin(), times_.end(), t);
+    const std::size_t i = static_cast<std::size_t>(next - times_.begin()) - 1;
+    const double f = (t - times_[i]) / (times_[i + 1] - times_[i]);
+    return segments_[i].at(f);
+}
+
+}  // namespace clipblur

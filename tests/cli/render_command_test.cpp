@@ -1,0 +1,74 @@
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
+
+namespace clipblur {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Runs a shell command line and returns the exit code of the process.
+int run(const std::string& command) {
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string renderCommand(const fs::path& dir, const std::string& extra) {
+    return std::string(CLIPBLUR_BINARY) + " render " + CLIPBLUR_SOURCE_DIR + "/configs/default.yaml" +
+           " --set render.method=stochastic --set film.width=64 --set film.height=36 --set render.samples=4" +
+           " --progress none " + extra + " > " + (dir / "stdout.txt").string() + " 2> " + (dir / "stderr.txt").string();
+}
+
+fs::path freshDir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+}  // namespace
+
+TEST(RenderCommand, RendersFramesThroughAPattern) {
+    const fs::path dir = freshDir("clipblur_cli_render");
+    const std::string out = (dir / "shot.####.exr").string();
+    ASSERT_EQ(run(renderCommand(dir, "--frames 3-4 --threads 1 --out " + out)), 0);
+    for (const char* name : {"shot.0003.exr", "shot.0004.exr", "shot.0003.stats.json", "shot.0004.stats.json"})
+        EXPECT_TRUE(fs::exists(dir / name)) << name;
+    auto in = OIIO::ImageInput::open((dir / "shot.0003.exr").string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().full_width, 64);
+    EXPECT_EQ(in->spec().get_string_attribute("clipblur:method"), "stochastic");
+    EXPECT_EQ(in->spec().get_int_attribute("clipblur:samples"), 4);
+}
+
+TEST(RenderCommand, SeveralFramesWithoutAPatternIsAUsageError) {
+    const fs::path dir = freshDir("clipblur_cli_nopattern");
+    EXPECT_EQ(run(renderCommand(dir, "--frames 0-2 --out " + (dir / "one.exr").string())), 2);
+    EXPECT_FALSE(fs::exists(dir / "one.exr"));
+}
+
+TEST(RenderCommand, MethodNotInThisBuildExitsWithTheRenderCode) {
+    const fs::path dir = freshDir("clipblur_cli_method");
+    EXPECT_EQ(run(renderCommand(dir, "--set render.method=accumulation --out " + (dir / "a.exr").string())), 6);
+}
+
+TEST(RenderCommand, InterruptStopsWithoutOutputAndExits130) {
+    const fs::path dir = freshDir("clipblur_cli_interrupt");
+    const fs::path out = dir / "slow.exr";
+    // Big enough to still be rendering after a second even on a fast machine (640x360, 256 samples).
+    const std::string render = std::string(CLIPBLUR_BINARY) + " render " + CLIPBLUR_SOURCE_DIR +
+                               "/configs/default.yaml --set render.method=stochastic --set render.samples=256" +
+                               " --progress none --out " + out.string();
+    const std::string script = render + " 2>/dev/null & pid=$!; sleep 1; kill -INT $pid; wait $pid; exit $?";
+    EXPECT_EQ(run("sh -c '" + script + "'"), 130);
+    EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace clipblur
