@@ -11,9 +11,8 @@ namespace clipblur {
 
 namespace {
 
-bool oddCell(double coordinate, double scale) {
-    return static_cast<long long>(std::floor(coordinate / scale)) & 1;
-}
+// fmod instead of an integer cast: floor(x/s) may exceed the range of any integer type.
+bool oddCell(double coordinate, double scale) { return std::fmod(std::floor(coordinate / scale), 2.0) != 0.0; }
 
 }  // namespace
 

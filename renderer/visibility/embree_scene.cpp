@@ -84,7 +84,7 @@ void checkMesh(const Object& object) {
 
 EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1) : t0_(t0), t1_(t1) {
     if (!(t1 >= t0)) throw Error(ExitCode::Render, "shutter window must satisfy t0 <= t1");
-    scene_ = rtcNewScene(device.get());
+    scene_.reset(rtcNewScene(device.get()));
     device.check("creating a scene");
 
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
@@ -161,7 +161,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double 
             if (bad_vertex[tri[0]] || bad_vertex[tri[1]] || bad_vertex[tri[2]]) ++stats_.dropped_triangles;
         }
         rtcCommitGeometry(geometry.get());
-        const unsigned id = rtcAttachGeometry(scene_, geometry.get());
+        const unsigned id = rtcAttachGeometry(scene_.get(), geometry.get());
         device.check("adding object '" + object.name + "'");
         if (object_of_geometry_.size() <= id) object_of_geometry_.resize(id + 1, -1);
         object_of_geometry_[id] = static_cast<int>(o);
@@ -169,33 +169,8 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double 
         stats_.triangles += static_cast<long long>(object.mesh.triangles.size());
         stats_.max_time_steps = std::max(stats_.max_time_steps, static_cast<int>(step_count));
     }
-    rtcCommitScene(scene_);
+    rtcCommitScene(scene_.get());
     device.check("building the acceleration structure");
-}
-
-EmbreeScene::~EmbreeScene() {
-    if (scene_) rtcReleaseScene(scene_);
-}
-
-EmbreeScene::EmbreeScene(EmbreeScene&& other) noexcept
-    : scene_(std::exchange(other.scene_, nullptr)),
-      t0_(other.t0_),
-      t1_(other.t1_),
-      object_of_geometry_(std::move(other.object_of_geometry_)),
-      steps_(std::move(other.steps_)),
-      stats_(other.stats_) {}
-
-EmbreeScene& EmbreeScene::operator=(EmbreeScene&& other) noexcept {
-    if (this != &other) {
-        if (scene_) rtcReleaseScene(scene_);
-        scene_ = std::exchange(other.scene_, nullptr);
-        t0_ = other.t0_;
-        t1_ = other.t1_;
-        object_of_geometry_ = std::move(other.object_of_geometry_);
-        steps_ = std::move(other.steps_);
-        stats_ = other.stats_;
-    }
-    return *this;
 }
 
 double EmbreeScene::embreeTime(double t) const {
@@ -222,7 +197,7 @@ EmbreeHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& dir
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
+    rtcIntersect1(scene_.get(), &context, &rh);
     EmbreeHit hit;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
     hit.hit = true;
@@ -251,7 +226,7 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
     ray.mask = 0xffffffffu;
     ray.id = 0;
     ray.flags = 0;
-    rtcOccluded1(scene_, &context, &ray);
+    rtcOccluded1(scene_.get(), &context, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 

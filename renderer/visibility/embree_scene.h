@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -46,9 +47,8 @@ public:
     static constexpr double kMaxChordErrorPixels = 0.1;
 
     EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1);
-    ~EmbreeScene();
-    EmbreeScene(EmbreeScene&& other) noexcept;
-    EmbreeScene& operator=(EmbreeScene&& other) noexcept;
+    EmbreeScene(EmbreeScene&& other) noexcept = default;
+    EmbreeScene& operator=(EmbreeScene&& other) noexcept = default;
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
@@ -62,10 +62,14 @@ public:
     double t1() const { return t1_; }
     int timeSteps(int object) const { return steps_[static_cast<std::size_t>(object)]; }
     const EmbreeSceneStats& stats() const { return stats_; }
-    RTCScene get() const { return scene_; }
+    RTCScene get() const { return scene_.get(); }
 
 private:
-    RTCScene scene_ = nullptr;
+    struct SceneRelease {
+        void operator()(RTCScene scene) const { rtcReleaseScene(scene); }
+    };
+    // Owned from the first line of the constructor, so a constructor that throws still releases it.
+    std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
     double t0_ = 0.0;
     double t1_ = 0.0;
     std::vector<int> object_of_geometry_;  // geomID -> object index
