@@ -10,5 +10,7 @@ namespace clipblur::cli {
 // process exit code. Errors are thrown as clipblur::Error and reported once, in main.
 using Action = std::function<int()>;
 
+Action addMergeCommand(CLI::App& app);
+Action addSubmitCommand(CLI::App& app);
 
 }  // namespace clipblur::cli

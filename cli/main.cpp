@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
         commands.emplace_back(app.get_subcommands({})[before], std::move(action));
     };
 
+    add(cli::addMergeCommand);
+    add(cli::addSubmitCommand);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -63,6 +63,30 @@ ShardSetCheck checkShards(const std::string& framePath, int count, const FrameEx
     return result;
 }
 
+bool frameIsMerged(const std::string& framePath, const FrameExpectation& expected) {
+    ImageExpectation want;
+    want.width = expected.width;
+    want.height = expected.height;
+    if (want.width <= 0 || want.height <= 0) {
+        auto in = OIIO::ImageInput::open(framePath);
+        if (!in) {
+            OIIO::geterror();
+            return false;
+        }
+        want.width = in->spec().full_width;
+        want.height = in->spec().full_height;
+    }
+    want.window = {0, 0, want.width, want.height};
+    want.config_hash = expected.config_hash;
+    want.channels = expected.channels;
+    return checkImage(framePath, want).complete;
+}
+
+std::vector<int> pendingShards(const std::string& framePath, int count, const FrameExpectation& expected) {
+    if (frameIsMerged(framePath, expected)) return {};
+    return checkShards(framePath, count, expected).incomplete;
+}
+
 static bool samePixelTypes(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b) {
     if (a.nchannels != b.nchannels) return false;
     for (int c = 0; c < a.nchannels; ++c)

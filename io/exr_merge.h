@@ -30,4 +30,12 @@ ShardSetCheck checkShards(const std::string& framePath, int count, const FrameEx
 // incomplete shard, or shards that disagree on pixel types, and writes nothing then.
 void mergeShards(const std::string& framePath, int count, const FrameExpectation& expected = {});
 
+// Checks the merged frame itself: an EXR whose data window is its whole display window and that matches
+// the known fields of `expected` (an unknown size is taken from the file).
+bool frameIsMerged(const std::string& framePath, const FrameExpectation& expected = {});
+
+// Shards of `framePath` that still have to be rendered: none when the merged frame is already complete,
+// else every incomplete shard. A resubmission renders exactly these.
+std::vector<int> pendingShards(const std::string& framePath, int count, const FrameExpectation& expected = {});
+
 }  // namespace clipblur

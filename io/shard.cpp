@@ -15,8 +15,17 @@ namespace clipblur {
 namespace fs = std::filesystem;
 
 std::string toString(const DataWindow& w) {
-    return "[" + std::to_string(w.x0) + "," + std::to_string(w.x0 + w.width) + ")x[" + std::to_string(w.y0) +
-           "," + std::to_string(w.y0 + w.height) + ")";
+    // Appending, not "[" + to_string(...): GCC 12 warns falsely (-Wrestrict, bug 105651) on the latter.
+    std::string s = "[";
+    s += std::to_string(w.x0);
+    s += ",";
+    s += std::to_string(w.x0 + w.width);
+    s += ")x[";
+    s += std::to_string(w.y0);
+    s += ",";
+    s += std::to_string(w.y0 + w.height);
+    s += ")";
+    return s;
 }
 
 static bool parseInt(std::string_view text, int& value) {
