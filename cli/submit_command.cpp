@@ -63,7 +63,7 @@ int submit(const SubmitOptions& o) {
     const RenderJob job = loadJob(o.job, o.overrides);
 
     FarmPlan plan;
-    plan.clipblur = o.binary.empty() ? fs::read_symlink("/proc/self/exe") : fs::absolute(o.binary);
+    plan.clipblur = o.binary.empty() ? fs::read_symlink("/proc/self/exe") : fs::absolute(o.binary).lexically_normal();
     plan.job_file = fs::absolute(o.job).lexically_normal();
     plan.overrides = o.overrides;
     plan.workdir = fs::current_path();
@@ -113,7 +113,20 @@ int submit(const SubmitOptions& o) {
         // sbatch --wait prints the id at submission and returns when the job ends, with its exit code.
         std::cout << "merge job (waiting)\n" << std::flush;
         const std::string mergeId = parseSbatchJobId(run(sbatchCommand(plan.farm_dir / "merge.sh", renderId, true)));
-        std::cout << "merge job " << mergeId << " finished\n";
+        std::cout << "merge job " << mergeId << " ended\n";
+        // Slurm cancels a merge whose render array failed and sbatch --wait still exits 0 for it, so the
+        // frames on disk are the only trustworthy verdict.
+        std::vector<std::string> unmerged;
+        for (int f = plan.first_frame; f <= plan.last_frame; ++f) {
+            const std::string path = expandFramePath(job.output.path, f);
+            if (!frameIsMerged(path, expected)) unmerged.push_back(path);
+        }
+        if (!unmerged.empty()) {
+            std::string message = std::to_string(unmerged.size()) + " frame(s) not merged; logs in " +
+                                  plan.farm_dir.string() + "; the same submit renders only what is missing";
+            for (const auto& path : unmerged) message += "\n  " + path;
+            throw Error(ExitCode::Render, message);
+        }
     } else {
         const std::string mergeId = parseSbatchJobId(run(sbatchCommand(plan.farm_dir / "merge.sh", renderId)));
         std::cout << "merge job " << mergeId << "\n";
