@@ -21,4 +21,7 @@ Action addPathsCommand(CLI::App& app);
 // preview). SIGINT/SIGTERM stop at the next tile without writing the frame; exit code 130.
 Action addRenderCommand(CLI::App& app);
 
+Action addMergeCommand(CLI::App& app);
+Action addSubmitCommand(CLI::App& app);
+
 }  // namespace clipblur::cli

@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
     add(cli::addValidateCommand);
     add(cli::addRenderCommand);
 
+    add(cli::addMergeCommand);
+    add(cli::addSubmitCommand);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

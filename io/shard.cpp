@@ -1,0 +1,148 @@
+#include "io/shard.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <memory>
+
+#include <OpenImageIO/imageio.h>
+
+#include "scene/error.h"
+
+namespace clipblur {
+
+namespace fs = std::filesystem;
+
+std::string toString(const DataWindow& w) {
+    // Appending, not "[" + to_string(...): GCC 12 warns falsely (-Wrestrict, bug 105651) on the latter.
+    std::string s = "[";
+    s += std::to_string(w.x0);
+    s += ",";
+    s += std::to_string(w.x0 + w.width);
+    s += ")x[";
+    s += std::to_string(w.y0);
+    s += ",";
+    s += std::to_string(w.y0 + w.height);
+    s += ")";
+    return s;
+}
+
+static bool parseInt(std::string_view text, int& value) {
+    if (text.empty()) return false;
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    return ec == std::errc() && ptr == end;
+}
+
+TileShard parseTileShard(std::string_view text) {
+    const auto usage = [&](const std::string& why) {
+        return Error(ExitCode::Usage, "bad tile \"" + std::string(text) + "\": " + why + " (expected I/N with 0 <= I < N)");
+    };
+    const std::size_t slash = text.find('/');
+    if (slash == std::string_view::npos) throw usage("no '/'");
+    TileShard shard;
+    if (!parseInt(text.substr(0, slash), shard.index)) throw usage("index is not an integer");
+    if (!parseInt(text.substr(slash + 1), shard.count)) throw usage("count is not an integer");
+    if (shard.count < 1) throw usage("count must be at least 1");
+    if (shard.index < 0 || shard.index >= shard.count) throw usage("index out of range");
+    return shard;
+}
+
+ShardGrid shardGrid(int width, int height, int count) {
+    if (width < 1 || height < 1) throw Error(ExitCode::Usage, "cannot shard an empty frame");
+    if (count < 1) throw Error(ExitCode::Usage, "tile count must be at least 1");
+    ShardGrid best{0, 0};
+    double bestSkew = std::numeric_limits<double>::infinity();
+    for (int cols = 1; cols <= count; ++cols) {
+        if (count % cols != 0) continue;
+        const int rows = count / cols;
+        if (cols > width || rows > height) continue;
+        const double blockW = static_cast<double>(width) / cols;
+        const double blockH = static_cast<double>(height) / rows;
+        const double skew = std::abs(std::log(blockW / blockH));
+        // Strictly better only, so ties keep fewer columns: longer scanlines per shard.
+        if (skew < bestSkew) {
+            bestSkew = skew;
+            best = {cols, rows};
+        }
+    }
+    if (best.cols == 0)
+        throw Error(ExitCode::Usage, std::to_string(count) + " tiles do not fit a " + std::to_string(width) + "x" +
+                                         std::to_string(height) + " frame without empty shards");
+    return best;
+}
+
+// Split point k of n parts over [0, size): floor(k*size/n) in 64-bit so huge frames cannot overflow.
+static int splitPoint(int k, int n, int size) {
+    return static_cast<int>(static_cast<long long>(k) * size / n);
+}
+
+DataWindow shardWindow(int width, int height, TileShard shard) {
+    if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count)
+        throw Error(ExitCode::Usage, "tile " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
+                                         " out of range");
+    const ShardGrid grid = shardGrid(width, height, shard.count);
+    const int col = shard.index % grid.cols;
+    const int row = shard.index / grid.cols;
+    DataWindow w;
+    w.x0 = splitPoint(col, grid.cols, width);
+    w.y0 = splitPoint(row, grid.rows, height);
+    w.width = splitPoint(col + 1, grid.cols, width) - w.x0;
+    w.height = splitPoint(row + 1, grid.rows, height) - w.y0;
+    return w;
+}
+
+std::string shardPath(const std::string& framePath, TileShard shard) {
+    const std::string tag = ".tile-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count);
+    const fs::path p(framePath);
+    if (!p.has_extension()) return framePath + tag;
+    const std::string ext = p.extension().string();
+    return framePath.substr(0, framePath.size() - ext.size()) + tag + ext;
+}
+
+ImageCheck checkImage(const fs::path& path, const ImageExpectation& expected) {
+    const auto fail = [](std::string why) { return ImageCheck{false, std::move(why)}; };
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return fail("missing");
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) return fail("unreadable: " + OIIO::geterror());
+    if (std::string(in->format_name()) != "openexr") return fail("not an OpenEXR file");
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.full_x != 0 || spec.full_y != 0 || spec.full_width != expected.width ||
+        spec.full_height != expected.height)
+        return fail("display window " + std::to_string(spec.full_width) + "x" + std::to_string(spec.full_height) +
+                    " differs from " + std::to_string(expected.width) + "x" + std::to_string(expected.height));
+    const DataWindow window{spec.x, spec.y, spec.width, spec.height};
+    if (spec.depth != 1 || spec.z != 0 || !(window == expected.window))
+        return fail("data window " + toString(window) + " differs from " + toString(expected.window));
+    if (!expected.channels.empty() && spec.channelnames != expected.channels) {
+        std::string names;
+        for (const auto& n : spec.channelnames) names += (names.empty() ? "" : ",") + n;
+        return fail("channels " + names + " differ from the expected ones");
+    }
+    if (!expected.config_hash.empty()) {
+        const std::string hash = spec.get_string_attribute(kConfigHashKey);
+        if (hash != expected.config_hash)
+            return fail("config hash \"" + hash + "\" differs from \"" + expected.config_hash + "\"");
+    }
+    // Reading every pixel is the only reliable test for a file cut short: the header of a truncated EXR
+    // is intact, its missing chunks only show when read.
+    std::vector<std::byte> pixels(spec.image_bytes(true));
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeUnknown, pixels.data()))
+        return fail("pixels unreadable: " + in->geterror());
+    return {true, {}};
+}
+
+bool shardIsComplete(const fs::path& path, int width, int height, TileShard shard, const std::string& configHash,
+                     const std::vector<std::string>& channels) {
+    ImageExpectation expected;
+    expected.width = width;
+    expected.height = height;
+    expected.window = shardWindow(width, height, shard);
+    expected.config_hash = configHash;
+    expected.channels = channels;
+    return checkImage(path, expected).complete;
+}
+
+}  // namespace clipblur

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace clipblur {
+
+// A rectangle of pixels inside a display window whose origin is (0, 0); half-open: [x0, x0+width).
+struct DataWindow {
+    int x0 = 0;
+    int y0 = 0;
+    int width = 0;
+    int height = 0;
+
+    bool empty() const { return width <= 0 || height <= 0; }
+    bool contains(int x, int y) const { return x >= x0 && x < x0 + width && y >= y0 && y < y0 + height; }
+    friend bool operator==(const DataWindow&, const DataWindow&) = default;
+};
+
+std::string toString(const DataWindow& w);
+
+// Shard `index` of `count` equal-ish parts of one frame, as given to `render --tile I/N`.
+struct TileShard {
+    int index = 0;
+    int count = 1;
+    friend bool operator==(const TileShard&, const TileShard&) = default;
+};
+
+// Metadata keys a shard EXR carries; the merged frame keeps every other key of shard 0.
+inline constexpr std::string_view kConfigHashKey = "clipblur:configHash";
+inline constexpr std::string_view kTileIndexKey = "clipblur:tileIndex";
+inline constexpr std::string_view kTileCountKey = "clipblur:tileCount";
+
+// Parses "I/N" with 0 <= I < N; throws Error(ExitCode::Usage) naming the bad text otherwise.
+TileShard parseTileShard(std::string_view text);
+
+// The grid a frame is cut into for `count` shards: cols * rows == count exactly, chosen so that
+// blocks are as close to square as possible (squarer blocks share fewer edges with their
+// neighbours and so waste less of the visibility work that straddles a shard border).
+struct ShardGrid {
+    int cols = 1;
+    int rows = 1;
+};
+ShardGrid shardGrid(int width, int height, int count);
+
+// The data window of shard `shard` of a width x height frame. Shards are numbered row-major over the
+// grid; column c spans [floor(c*W/cols), floor((c+1)*W/cols)), rows likewise, so the shards never
+// overlap, cover the frame exactly and differ in size by at most one pixel per axis. Throws
+// Error(ExitCode::Usage) when the frame has fewer pixels than shards along every grid choice.
+DataWindow shardWindow(int width, int height, TileShard shard);
+
+// "out.0001.exr" -> "out.0001.tile-3-of-8.exr": the shard tag goes before the extension so image tools
+// still recognise the format.
+std::string shardPath(const std::string& framePath, TileShard shard);
+
+// What a finished image must look like to be accepted as complete.
+struct ImageExpectation {
+    int width = 0;                       // display window, origin (0, 0)
+    int height = 0;
+    DataWindow window;                   // expected data window
+    std::string config_hash;             // empty: not checked
+    std::vector<std::string> channels;   // empty: not checked
+};
+
+struct ImageCheck {
+    bool complete = false;
+    std::string reason;  // why not, for messages; empty when complete
+};
+
+// Opens `path` as an EXR and checks display and data window, channels, the config hash metadata and
+// that every pixel reads back; a truncated or half-written file is reported incomplete, never thrown.
+ImageCheck checkImage(const std::filesystem::path& path, const ImageExpectation& expected);
+
+// checkImage for shard `shard` of a width x height frame.
+bool shardIsComplete(const std::filesystem::path& path, int width, int height, TileShard shard,
+                     const std::string& configHash, const std::vector<std::string>& channels = {});
+
+}  // namespace clipblur
