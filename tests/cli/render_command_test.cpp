@@ -54,11 +54,6 @@ TEST(RenderCommand, SeveralFramesWithoutAPatternIsAUsageError) {
     EXPECT_FALSE(fs::exists(dir / "one.exr"));
 }
 
-TEST(RenderCommand, MethodNotInThisBuildExitsWithTheRenderCode) {
-    const fs::path dir = freshDir("clipblur_cli_method");
-    EXPECT_EQ(run(renderCommand(dir, "--set render.method=accumulation --out " + (dir / "a.exr").string())), 6);
-}
-
 TEST(RenderCommand, InterruptStopsWithoutOutputAndExits130) {
     const fs::path dir = freshDir("clipblur_cli_interrupt");
     const fs::path out = dir / "slow.exr";

@@ -240,16 +240,4 @@ TEST(StochasticRenderer, ReportsProgressPerTileAndStopsWhenCancelled) {
     }
 }
 
-TEST(RenderFrame, MethodsNotInThisBuildAreAnError) {
-    RenderJob job = test::squareFilmJob();
-    job.render.method = Method::Clipped;
-    try {
-        renderFrame(job, 0);
-        FAIL() << "expected an error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::Render);
-        EXPECT_NE(e.message().find("'clipped' is not available"), std::string::npos);
-    }
-}
-
 }  // namespace clipblur
