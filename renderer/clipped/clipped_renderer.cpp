@@ -69,6 +69,7 @@ void recordFrameStats(RenderStats& stats, const std::string& prefix, const Frame
     stats.counts[prefix + "binned_triangles"] = s.candidates.binned;
     stats.counts[prefix + "fragments"] = s.fragments;
     stats.counts[prefix + "shaded_pieces"] = s.shaded_pieces;
+    stats.counts[prefix + "merged_triangles"] = s.merged_triangles;
     stats.counts[prefix + "fragment_triangles"] = s.triangles;
     stats.counts[prefix + "near_clipped"] = s.near_clipped;
     static const char* buckets[] = {"0", "1", "2", "3_4", "5_8", "over_8"};
@@ -128,6 +129,8 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stage = Clock::now();
     FragmentLayers layers;
     layers.triangles = {&open, both_frames ? &close : nullptr};
+    layers.time = {t0, t1};
+    layers.eye = {evalCamera(scene.camera, t0).position, evalCamera(scene.camera, t1).position};
     if (job.output.aov_motion) {
         layers.motion[0] = fragmentMotion(scene, projection, t0, t1, open);
         if (both_frames) layers.motion[1] = fragmentMotion(scene, projection, t0, t1, close);
@@ -164,7 +167,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
             const double t = times[static_cast<std::size_t>(k)];
             const MotionSnapshot snapshot(scene, projection, t);
             ReclipScratch scratch;
-            reclipSubframe(scene, snapshot, (t - t0) / (t1 - t0), layers, refs, tile, scratch,
+            reclipSubframe(scene, shader, snapshot, (t - t0) / (t1 - t0), layers, refs, tile, scratch,
                            sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
         });
         for (int y = tile.y0; y < tile.y1; ++y) {
@@ -195,6 +198,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                 reclip_totals.near_clipped += s.near_clipped;
                 reclip_totals.fragments += s.fragments;
                 reclip_totals.mixed += s.mixed;
+                reclip_totals.shaded_pieces += s.shaded_pieces;
             }
             subframes_total += n;
             still_tiles += still_tile ? 1 : 0;
@@ -223,6 +227,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["reclip_near_clipped"] = reclip_totals.near_clipped;
     stats.counts["reclip_fragments"] = reclip_totals.fragments;
     stats.counts["reclip_mixed_fragments"] = reclip_totals.mixed;
+    stats.counts["reclip_shaded_pieces"] = reclip_totals.shaded_pieces;
     stats.counts["triangles"] = embree.stats().triangles;
     recordFrameStats(stats, "open_", open_stats);
     if (both_frames) recordFrameStats(stats, "close_", close_stats);

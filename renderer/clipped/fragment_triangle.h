@@ -9,13 +9,14 @@ namespace clipblur {
 
 // One clipped triangle of the paper's eq. 2, kept as three points on its mesh triangle (barycentrics)
 // rather than as image-plane positions: wherever the mesh triangle goes, the same three surface points
-// give the triangle's exact image at that time, with its range. Colour is the shaded value at the frame
-// the triangle was made in.
+// give the triangle's exact image at that time, with its range. Its colour is the surface's shading at
+// the frame the triangle was made in; that is a property of the surface points, so it is evaluated on the
+// re-clipped pieces (renderer/clipped/subframe_reclip.h) rather than stored: one value per stored
+// triangle would blur textures and lighting over triangles larger than a pixel.
 struct FragmentTriangle {
     std::uint32_t object = 0;
     std::uint32_t triangle = 0;
     std::array<glm::dvec3, 3> bary{};
-    glm::vec3 colour{0.0f};
 };
 
 }  // namespace clipblur

@@ -1,5 +1,8 @@
 #include "renderer/clipped/frame_fragments.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <tbb/parallel_for.h>
 
 #include "renderer/fragments/fragment_tile.h"
@@ -21,6 +24,36 @@ int bucketOf(std::size_t count) {
     if (count <= 2) return static_cast<int>(count);
     if (count <= 4) return 3;
     return count <= 8 ? 4 : 5;
+}
+
+// The part of a screen triangle inside the tile's rectangle.
+ConvexPolygon clipToTile(const ScreenTriangle& t, const Tile& tile) {
+    ConvexPolygon poly = ConvexPolygon::triangle(t.raster[0], t.raster[1], t.raster[2]);
+    const double bounds[4] = {double(tile.x0), double(tile.x1), double(tile.y0), double(tile.y1)};
+    for (int side = 0; side < 4; ++side) {
+        std::array<double, kMaxPolygonVertices> s{};
+        const int axis = side / 2;
+        const double sign = side % 2 == 0 ? 1.0 : -1.0;
+        for (int k = 0; k < poly.n; ++k) s[static_cast<std::size_t>(k)] = sign * (poly.v[k][axis] - bounds[side]);
+        ConvexPolygon inside;
+        clipByValues(poly, s.data(), inside);
+        poly = inside;
+        if (poly.degenerate()) break;
+    }
+    return poly;
+}
+
+// Appends a visible convex polygon of `screen` as fragment triangles (a fan) on the mesh triangle.
+void emitPolygon(const ConvexPolygon& polygon, const ScreenTriangle& screen, const SourceTriangle& source,
+                 std::vector<FragmentTriangle>& out) {
+    std::array<glm::dvec3, kMaxPolygonVertices> bary{};
+    for (int k = 0; k < polygon.n; ++k) {
+        SourceSample s;
+        evalSource(screen, polygon.v[k], s);
+        bary[static_cast<std::size_t>(k)] = s.bary[0] * source.bary[0] + s.bary[1] * source.bary[1] + s.bary[2] * source.bary[2];
+    }
+    for (int k = 1; k + 1 < polygon.n; ++k)
+        out.push_back({source.object, source.triangle, {bary[0], bary[static_cast<std::size_t>(k)], bary[static_cast<std::size_t>(k + 1)]}});
 }
 
 struct TileOutput {
@@ -63,6 +96,29 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         out.stats.rejected_triangles += fragments.rejected_triangles;
         out.stats.dropped_area += fragments.dropped_area;
 
+        // Visible area of each candidate in the tile. A triangle whose visible area is all of its part
+        // inside the tile is kept as that one polygon instead of one piece per pixel: same surface points,
+        // far fewer triangles to propagate and re-clip (a large floor triangle becomes one, not hundreds).
+        std::vector<double> visible(candidates.size(), 0.0);
+        const auto localIndex = [&](std::uint32_t screen_index) {
+            return static_cast<std::size_t>(std::lower_bound(candidates.begin(), candidates.end(), screen_index) -
+                                            candidates.begin());
+        };
+        for (const Fragment& fragment : fragments.fragments) visible[localIndex(fragment.sources[0].source)] += fragment.area;
+        std::vector<char> merged(candidates.size(), 0);
+        for (std::size_t c = 0; c < candidates.size(); ++c) {
+            if (visible[c] <= 0.0) continue;
+            const ScreenTriangle& screen = frame.triangles()[candidates[c]];
+            const ConvexPolygon part = clipToTile(screen, tile);
+            const double full = std::abs(part.area());
+            // Relative slack for the rounding of summed pixel pieces; a real occlusion of 1e-9 of a
+            // triangle's area inside one tile is far below what any pixel can show.
+            if (part.degenerate() || visible[c] < full * (1.0 - 1e-9)) continue;
+            merged[c] = 1;
+            ++out.stats.merged_triangles;
+            emitPolygon(part, screen, frame.source(candidates[c]), out.triangles);
+        }
+
         std::vector<ShadedPiece> pieces;
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
@@ -71,27 +127,22 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
                 out.stats.fragments += static_cast<long long>(pixel_fragments.size());
                 const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
                 for (const Fragment& fragment : pixel_fragments) {
-                    const std::uint32_t screen_index = fragment.sources[0].source;  // ScreenTriangle::source: the frame index
+                    const std::uint32_t screen_index = fragment.sources[0].source;  // the frame's triangle index
                     const ScreenTriangle& screen = frame.triangles()[screen_index];
                     const SourceTriangle& source = frame.source(screen_index);
                     ConvexPolygon polygon;
                     for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
                     polygon.close();
+                    if (!merged[localIndex(screen_index)]) emitPolygon(polygon, screen, source, out.triangles);
+                    if (!still) continue;
                     pieces.clear();
                     shadeFragment(polygon, screen, source, shader, time, eye, pieces);
                     out.stats.shaded_pieces += static_cast<long long>(pieces.size());
                     for (const ShadedPiece& piece : pieces) {
-                        if (still) {
-                            still->colour[pixel] += piece.area * piece.colour;
-                            still->covered[pixel] += piece.area;
-                            SourceSample s;
-                            if (evalSource(screen, centroid(piece.polygon), s))
-                                still->depth[pixel] += piece.area / s.inv_depth;
-                        }
-                        const glm::vec3 colour(piece.colour);
-                        for (int k = 1; k + 1 < piece.polygon.n; ++k)
-                            out.triangles.push_back({source.object, source.triangle,
-                                                     {piece.bary[0], piece.bary[k], piece.bary[k + 1]}, colour});
+                        still->colour[pixel] += piece.area * piece.colour;
+                        still->covered[pixel] += piece.area;
+                        SourceSample s;
+                        if (evalSource(screen, centroid(piece.polygon), s)) still->depth[pixel] += piece.area / s.inv_depth;
                     }
                 }
             }
@@ -112,6 +163,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         stats.candidates.binned += s.candidates.binned;
         stats.fragments += s.fragments;
         stats.shaded_pieces += s.shaded_pieces;
+        stats.merged_triangles += s.merged_triangles;
         stats.triangles += s.triangles;
         stats.rejected_triangles += s.rejected_triangles;
         stats.dropped_area += s.dropped_area;

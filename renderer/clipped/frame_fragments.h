@@ -28,6 +28,7 @@ struct FrameFragmentStats {
     CandidateStats candidates;
     long long fragments = 0;           // visible convex pieces after clipping
     long long shaded_pieces = 0;       // after texture-cell cuts
+    long long merged_triangles = 0;    // candidates fully visible in a tile, kept whole rather than per pixel
     long long triangles = 0;           // fragment triangles kept for propagation
     long long near_clipped = 0;
     long long rejected_triangles = 0;

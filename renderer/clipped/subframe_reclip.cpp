@@ -13,8 +13,8 @@ void TileSums::reset(std::size_t pixels) {
 
 namespace {
 
-void addScreenTriangle(const MotionSnapshot& snapshot, const std::array<glm::dvec3, 3>& world, FragmentRef ref,
-                       float weight, ReclipScratch& scratch) {
+void addScreenTriangle(const MotionSnapshot& snapshot, const std::array<glm::dvec3, 3>& world,
+                       const SourceTriangle& source, FragmentRef ref, float weight, ReclipScratch& scratch) {
     ScreenTriangle s;
     for (int i = 0; i < 3; ++i) {
         const ImagePoint ip = projectToImagePlane(snapshot.camera, world[i]);
@@ -26,46 +26,43 @@ void addScreenTriangle(const MotionSnapshot& snapshot, const std::array<glm::dve
     s.weight = weight;
     scratch.screen.push_back(s);
     scratch.origin.push_back(ref);
+    scratch.sources.push_back(source);
+}
+
+// Moves one fragment triangle to the snapshot's time; pieces behind the camera plane are cut off in 3D,
+// where barycentrics interpolate linearly, so the kept part still knows its surface points.
+void propagate(const Scene& scene, const MotionSnapshot& snapshot, const FragmentTriangle& t, FragmentRef ref,
+               float weight, ReclipScratch& scratch, ReclipStats& stats) {
+    std::array<glm::dvec3, 3> world;
+    bool behind = false;
+    for (int i = 0; i < 3; ++i) {
+        const ProjectedPoint p = project(snapshot, scene, MeshPoint{t.object, t.triangle, t.bary[i]});
+        world[i] = p.world;
+        behind = behind || p.behind || p.depth < kNearDepth;
+    }
+    ++stats.propagated;
+    if (!behind) {
+        addScreenTriangle(snapshot, world, {t.object, t.triangle, t.bary}, ref, weight, scratch);
+        return;
+    }
+    ++stats.near_clipped;
+    std::array<glm::dvec3, 4> w, b;
+    const int n = clipToNearPlane(snapshot.camera, kNearDepth, world, t.bary, w, b);
+    if (n >= 3) addScreenTriangle(snapshot, {w[0], w[1], w[2]}, {t.object, t.triangle, {b[0], b[1], b[2]}}, ref, weight, scratch);
+    if (n == 4) addScreenTriangle(snapshot, {w[0], w[2], w[3]}, {t.object, t.triangle, {b[0], b[2], b[3]}}, ref, weight, scratch);
 }
 
 }  // namespace
 
-void reclipSubframe(const Scene& scene, const MotionSnapshot& snapshot, double f, const FragmentLayers& layers,
-                    std::span<const FragmentRef> refs, const Tile& tile, ReclipScratch& scratch, TileSums& out,
-                    ReclipStats& stats) {
+void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
+                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const Tile& tile,
+                    ReclipScratch& scratch, TileSums& out, ReclipStats& stats) {
     scratch.screen.clear();
     scratch.origin.clear();
+    scratch.sources.clear();
     const std::array<float, 2> weights{static_cast<float>(1.0 - f), static_cast<float>(f)};
-    for (const FragmentRef ref : refs) {
-        const FragmentTriangle& t = (*layers.triangles[ref.layer])[ref.index];
-        std::array<ProjectedPoint, 3> p;
-        bool behind = false;
-        for (int i = 0; i < 3; ++i) {
-            p[i] = project(snapshot, scene, MeshPoint{t.object, t.triangle, t.bary[i]});
-            behind = behind || p[i].behind || p[i].depth < kNearDepth;
-        }
-        ++stats.propagated;
-        if (!behind) {
-            ScreenTriangle s;
-            for (int i = 0; i < 3; ++i) {
-                s.raster[i] = p[i].raster;
-                s.inv_depth[i] = p[i].inv_depth;
-            }
-            s.source = static_cast<std::uint32_t>(scratch.screen.size());
-            s.layer = ref.layer;
-            s.weight = weights[ref.layer];
-            scratch.screen.push_back(s);
-            scratch.origin.push_back(ref);
-            continue;
-        }
-        ++stats.near_clipped;
-        const std::array<glm::dvec3, 3> world{p[0].world, p[1].world, p[2].world};
-        const std::array<glm::dvec3, 3> unused{};
-        std::array<glm::dvec3, 4> w, b;
-        const int n = clipToNearPlane(snapshot.camera, kNearDepth, world, unused, w, b);
-        if (n >= 3) addScreenTriangle(snapshot, {w[0], w[1], w[2]}, ref, weights[ref.layer], scratch);
-        if (n == 4) addScreenTriangle(snapshot, {w[0], w[2], w[3]}, ref, weights[ref.layer], scratch);
-    }
+    for (const FragmentRef ref : refs)
+        propagate(scene, snapshot, (*layers.triangles[ref.layer])[ref.index], ref, weights[ref.layer], scratch, stats);
 
     resolveTile(scratch.screen, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch.tile, scratch.fragments);
     const std::size_t pixels = static_cast<std::size_t>(tile.width()) * tile.height();
@@ -76,23 +73,35 @@ void reclipSubframe(const Scene& scene, const MotionSnapshot& snapshot, double f
             for (const Fragment& fragment : scratch.fragments.pixel(x, y)) {
                 ++stats.fragments;
                 if (fragment.source_count > 1) ++stats.mixed;
+                ConvexPolygon polygon;
+                for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
+                polygon.close();
                 glm::dvec3 colour(0.0);
                 glm::dvec2 motion(0.0);
                 for (int k = 0; k < fragment.source_count; ++k) {
-                    const FragmentRef ref = scratch.origin[fragment.sources[k].source];
+                    const std::uint32_t s = fragment.sources[k].source;
+                    const FragmentRef ref = scratch.origin[s];
                     const double m = fragment.mix(k);
-                    colour += m * glm::dvec3((*layers.triangles[ref.layer])[ref.index].colour);
+                    // The piece is where this source's surface is now; it is shaded as its frame saw it.
+                    scratch.pieces.clear();
+                    shadeFragment(polygon, scratch.screen[s], scratch.sources[s], shader, layers.time[ref.layer],
+                                  layers.eye[ref.layer], scratch.pieces);
+                    stats.shaded_pieces += static_cast<long long>(scratch.pieces.size());
+                    glm::dvec3 sum(0.0);
+                    double area = 0.0;
+                    for (const ShadedPiece& piece : scratch.pieces) {
+                        sum += piece.area * piece.colour;
+                        area += piece.area;
+                    }
+                    if (area > 0.0) colour += m * sum / area;
                     if (!layers.motion[ref.layer].empty()) motion += m * glm::dvec2(layers.motion[ref.layer][ref.index]);
                 }
                 out.colour[i] += fragment.area * colour;
                 out.covered[i] += fragment.area;
                 out.motion[i] += fragment.area * motion;
-                SourceSample s;
-                const ScreenTriangle& screen = scratch.screen[fragment.sources[0].source];
-                glm::dvec2 mean(0.0);
-                for (int k = 0; k < fragment.vertex_count; ++k) mean += fragment.vertices[k];
-                if (evalSource(screen, mean / double(fragment.vertex_count), s) && s.inv_depth > 0.0)
-                    out.depth[i] += fragment.area / s.inv_depth;
+                SourceSample sample;
+                if (evalSource(scratch.screen[fragment.sources[0].source], centroid(polygon), sample) && sample.inv_depth > 0.0)
+                    out.depth[i] += fragment.area / sample.inv_depth;
             }
         }
     }

@@ -9,6 +9,8 @@
 #include "renderer/clipped/fragment_triangle.h"
 #include "renderer/fragments/fragment_tile.h"
 #include "renderer/propagation/surface_path.h"
+#include "renderer/shading/fragment_shading.h"
+#include "renderer/shading/shading.h"
 #include "renderer/tiles.h"
 
 namespace clipblur {
@@ -19,9 +21,12 @@ struct FragmentRef {
     std::uint8_t layer = 0;
 };
 
-// The fragment triangles of both frames, and per triangle its open-to-close raster motion (for the AOV).
+// The fragment triangles of both frames, how to shade them at their own frame (time and eye), and per
+// triangle its open-to-close raster motion (for the AOV).
 struct FragmentLayers {
     std::array<const std::vector<FragmentTriangle>*, 2> triangles{};
+    std::array<double, 2> time{};
+    std::array<glm::dvec3, 2> eye{};
     std::array<std::vector<glm::vec2>, 2> motion;
 };
 
@@ -37,7 +42,9 @@ struct TileSums {
 
 struct ReclipScratch {
     std::vector<ScreenTriangle> screen;
-    std::vector<FragmentRef> origin;  // per screen triangle
+    std::vector<FragmentRef> origin;      // per screen triangle
+    std::vector<SourceTriangle> sources;  // per screen triangle: its vertices on the mesh triangle
+    std::vector<ShadedPiece> pieces;
     TileScratch tile;
     FragmentTile fragments;
 };
@@ -47,13 +54,16 @@ struct ReclipStats {
     long long near_clipped = 0;    // of those, clipped in 3D at the camera plane
     long long fragments = 0;       // non-overlapping pieces after the re-clip
     long long mixed = 0;           // pieces where both frames' copies of a surface coincide
+    long long shaded_pieces = 0;   // shading evaluations (after texture-cell cuts)
 };
 
 // Sections 3.2-3.4 for one (tile, subframe): moves every referenced fragment triangle to the snapshot's
 // time along its exact path (frame-0 ones forward, frame-1 ones backward: the same function of time),
 // clips pieces crossing the camera plane in 3D, re-clips the union per pixel into non-overlapping
-// fragments (equal range: one kept, colours mixed with weights 1-f and f), and reduces each pixel.
-void reclipSubframe(const Scene& scene, const MotionSnapshot& snapshot, double f, const FragmentLayers& layers,
+// fragments (equal range: one kept, colours mixed with weights 1-f and f), shades each piece as its frame
+// saw it, and reduces each pixel.
+void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
+                    const FragmentLayers& layers,
                     std::span<const FragmentRef> refs, const Tile& tile, ReclipScratch& scratch, TileSums& out,
                     ReclipStats& stats);
 

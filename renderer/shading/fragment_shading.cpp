@@ -64,16 +64,13 @@ void shadeFragment(const ConvexPolygon& polygon, const ScreenTriangle& screen, c
         for (int axis = 0; axis < planes.axes; ++axis) {
             next.clear();
             for (const ConvexPolygon& cell : cells) {
-                // (X_axis - c)/z at each vertex, affine in raster: sum_i l_i w_i (X_i - c).
-                std::array<double, kMaxPolygonVertices> lw_x{}, lw{};
+                // Object-space coordinate at each vertex: the cell range this piece spans on this axis.
                 double lo = INFINITY, hi = -INFINITY;
                 for (int k = 0; k < cell.n; ++k) {
                     SourceSample s;
                     evalSource(screen, cell.v[k], s);
-                    lw[k] = s.inv_depth;
-                    lw_x[k] = 0.0;
-                    for (int i = 0; i < 3; ++i) lw_x[k] += s.screen_bary[i] * screen.inv_depth[i] * planes.object[i][axis];
-                    const double x = lw_x[k] / lw[k];
+                    const double x = s.bary[0] * planes.object[0][axis] + s.bary[1] * planes.object[1][axis] +
+                                     s.bary[2] * planes.object[2][axis];
                     lo = std::min(lo, x / planes.scale);
                     hi = std::max(hi, x / planes.scale);
                 }
@@ -85,8 +82,9 @@ void shadeFragment(const ConvexPolygon& polygon, const ScreenTriangle& screen, c
                 }
                 work[cur] = cell;
                 for (double k = first; k <= last; k += 1.0) {
+                    // (X - k s)/z = sum_i l_i w_i (X_i - k s) is affine in raster, so splitting on its
+                    // values at the vertices cuts along the exact cell boundary.
                     std::array<double, kMaxPolygonVertices> g{};
-                    // Recompute on the current remainder's vertices: they change with each cut.
                     for (int v = 0; v < work[cur].n; ++v) {
                         SourceSample s;
                         evalSource(screen, work[cur].v[v], s);
