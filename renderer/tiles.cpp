@@ -14,14 +14,19 @@ TileGrid::TileGrid(int width, int height, int tile_size) : width_(width), height
     rows_ = (height + tile_size - 1) / tile_size;
 }
 
+TileGrid::TileGrid(int x0, int y0, int width, int height, int tile_size) : TileGrid(width, height, tile_size) {
+    x0_ = x0;
+    y0_ = y0;
+}
+
 Tile TileGrid::tile(int index) const {
     const int tx = index % columns_;
     const int ty = index / columns_;
     Tile t;
-    t.x0 = tx * size_;
-    t.y0 = ty * size_;
-    t.x1 = std::min(t.x0 + size_, width_);
-    t.y1 = std::min(t.y0 + size_, height_);
+    t.x0 = x0_ + tx * size_;
+    t.y0 = y0_ + ty * size_;
+    t.x1 = std::min(t.x0 + size_, x0_ + width_);
+    t.y1 = std::min(t.y0 + size_, y0_ + height_);
     return t;
 }
 

@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "renderer/clipped/frame_fragments.h"
+#include "renderer/clipped/guard_band.h"
 #include "renderer/clipped/motion_plan.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/visibility/candidates.h"
@@ -112,16 +113,22 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     RenderStats& stats = result.stats;
     stats.seconds["scene_build"] = secondsSince(start);
 
-    // 1. Clipped, shaded fragment sets at shutter open and close.
+    // 1. Clipped, shaded fragment sets at shutter open and close, over the image and a guard band wide
+    // enough that everything seen during the shutter is in one of them.
     auto stage = Clock::now();
+    const int band = guardBandPixels(scene, projection, t0, t1, std::max(scene.film.width, scene.film.height) / 2);
+    const TileGrid visibility_grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band,
+                                   settings.tile_size);
+    stats.counts["guard_band_pixels"] = band;
     FrameFragmentStats open_stats, close_stats;
     PixelSums still;
     still.resize(pixels);
-    const std::vector<FragmentTriangle> open = buildFrameFragments(
-        scene, embree, adjacency, projection, grid, t0, shader, settings.visibility_rays, callbacks, true, &still, open_stats);
+    const std::vector<FragmentTriangle> open =
+        buildFrameFragments(scene, embree, adjacency, projection, visibility_grid, t0, shader, settings.visibility_rays,
+                            callbacks, true, &still, open_stats);
     const std::vector<FragmentTriangle> close =
-        both_frames ? buildFrameFragments(scene, embree, adjacency, projection, grid, t1, shader, settings.visibility_rays,
-                                          callbacks, true, nullptr, close_stats)
+        both_frames ? buildFrameFragments(scene, embree, adjacency, projection, visibility_grid, t1, shader,
+                                          settings.visibility_rays, callbacks, true, nullptr, close_stats)
                     : std::vector<FragmentTriangle>{};
     stats.seconds["visibility"] = secondsSince(stage);
 
@@ -188,7 +195,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                     motion += s.motion[i];
                 }
                 const double w = 1.0 / n;
-                writer.write(pixel, colour * w, covered * w, depth, motion);
+                writer.write(pixel, colour * w, covered * w, depth * w, motion * w);
             }
         }
         {
@@ -271,7 +278,7 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     result.image = Image::make(scene.film.width, scene.film.height, channelNames(job.output));
     ImageWriter writer(result.image, scene.film.background);
     for (std::size_t p = 0; p < pixels; ++p)
-        writer.write(p, total.colour[p] / double(n), total.covered[p] / double(n), total.depth[p], glm::dvec2(0.0));
+        writer.write(p, total.colour[p] / double(n), total.covered[p] / double(n), total.depth[p] / double(n), glm::dvec2(0.0));
     RenderStats& stats = result.stats;
     stats.info["method"] = "accumulation";
     stats.counts["frame"] = frame;

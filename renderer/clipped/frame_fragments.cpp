@@ -72,6 +72,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
     const FrameGeometry frame(scene, projection, time, grid);
     const glm::dvec3 eye = frame.camera().position;
     const int width = scene.film.width;
+    const int height = scene.film.height;
     std::vector<TileOutput> outputs(static_cast<std::size_t>(grid.count()));
     std::atomic<bool> cancelled{false};
 
@@ -125,7 +126,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
                 const auto pixel_fragments = fragments.pixel(x, y);
                 ++out.stats.fragments_per_pixel[static_cast<std::size_t>(bucketOf(pixel_fragments.size()))];
                 out.stats.fragments += static_cast<long long>(pixel_fragments.size());
-                const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
+                const std::size_t pixel = static_cast<std::size_t>(std::max(y, 0)) * width + std::max(x, 0);
                 for (const Fragment& fragment : pixel_fragments) {
                     const std::uint32_t screen_index = fragment.sources[0].source;  // the frame's triangle index
                     const ScreenTriangle& screen = frame.triangles()[screen_index];
@@ -134,7 +135,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
                     for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
                     polygon.close();
                     if (!merged[localIndex(screen_index)]) emitPolygon(polygon, screen, source, out.triangles);
-                    if (!still) continue;
+                    if (!still || x < 0 || y < 0 || x >= width || y >= height) continue;  // guard band
                     pieces.clear();
                     shadeFragment(polygon, screen, source, shader, time, eye, pieces);
                     out.stats.shaded_pieces += static_cast<long long>(pieces.size());

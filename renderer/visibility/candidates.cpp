@@ -1,6 +1,7 @@
 #include "renderer/visibility/candidates.h"
 
 #include <algorithm>
+#include <iterator>
 
 namespace clipblur {
 
@@ -84,6 +85,11 @@ void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const
         if (frame.minExtent(s) < thin) out.push_back(s);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
+    // Only what can touch the tile: a hit triangle's neighbours may lie elsewhere.
+    std::vector<std::uint32_t>& kept = scratch.kept;
+    kept.clear();
+    std::set_intersection(out.begin(), out.end(), binned.begin(), binned.end(), std::back_inserter(kept));
+    out.swap(kept);
     stats.candidates += static_cast<long long>(out.size());
 }
 

@@ -42,6 +42,7 @@ struct CandidateStats {
 struct CandidateScratch {
     std::vector<std::uint64_t> hits;
     std::vector<std::uint64_t> ring;
+    std::vector<std::uint32_t> kept;
 };
 
 // The screen triangles of `tile` that the clipper must see at the frame's time.

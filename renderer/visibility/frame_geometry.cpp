@@ -57,10 +57,10 @@ FrameGeometry::FrameGeometry(const Scene& scene, const Projection& projection, d
         const double x1 = std::max({t.raster[0].x, t.raster[1].x, t.raster[2].x});
         const double y0 = std::min({t.raster[0].y, t.raster[1].y, t.raster[2].y});
         const double y1 = std::max({t.raster[0].y, t.raster[1].y, t.raster[2].y});
-        c0 = static_cast<int>(std::clamp(std::floor(x0 / size), 0.0, double(columns)));
-        c1 = static_cast<int>(std::clamp(std::floor(x1 / size), -1.0, double(columns - 1)));
-        r0 = static_cast<int>(std::clamp(std::floor(y0 / size), 0.0, double(rows)));
-        r1 = static_cast<int>(std::clamp(std::floor(y1 / size), -1.0, double(rows - 1)));
+        c0 = static_cast<int>(std::clamp(std::floor((x0 - grid.x0()) / size), 0.0, double(columns)));
+        c1 = static_cast<int>(std::clamp(std::floor((x1 - grid.x0()) / size), -1.0, double(columns - 1)));
+        r0 = static_cast<int>(std::clamp(std::floor((y0 - grid.y0()) / size), 0.0, double(rows)));
+        r1 = static_cast<int>(std::clamp(std::floor((y1 - grid.y0()) / size), -1.0, double(rows - 1)));
     };
     for (const ScreenTriangle& t : triangles_) {
         int c0, c1, r0, r1;

@@ -1,0 +1,124 @@
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "io/job_loader.h"
+#include "renderer/render.h"
+#include "scene/primitives.h"
+
+namespace clipblur {
+
+namespace {
+
+const std::vector<float>& channel(const RenderResult& r, const char* name) { return r.image.find(name)->values; }
+
+double meanSquaredDifference(const RenderResult& a, const RenderResult& b) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const char* c : {"R", "G", "B"}) {
+        const auto& x = channel(a, c);
+        const auto& y = channel(b, c);
+        for (std::size_t i = 0; i < x.size(); ++i, ++n) sum += (double(x[i]) - y[i]) * (double(x[i]) - y[i]);
+    }
+    return sum / double(n);
+}
+
+RenderResult averaged(const RenderResult& a, const RenderResult& b) {
+    RenderResult m = a;
+    for (std::size_t c = 0; c < m.image.channels.size(); ++c)
+        for (std::size_t i = 0; i < m.image.channels[c].values.size(); ++i)
+            m.image.channels[c].values[i] = 0.5f * (a.image.channels[c].values[i] + b.image.channels[c].values[i]);
+    return m;
+}
+
+}  // namespace
+
+// Against the converged stochastic reference, with a statistical test instead of a fixed tolerance.
+// Two stochastic renders with independent seeds s1, s2 give per pixel E[(s1 - s2)^2] = 2 var, so
+// V = mean (s1 - s2)^2 / 4 estimates the variance of their average s. If clipped rendering c is exact,
+// E[mean (c - s)^2] = V, and any bias b adds b^2. The ratio R = mean (c - s)^2 / V is then 1 plus
+// noise; with a few hundred edge pixels its standard error is ~0.1, so R < 1.5 allows ~5 standard
+// errors of noise plus a bias of at most sqrt(0.5 V) (about 0.004 here), and no real visibility or
+// propagation error (which shows as bias over whole edges) survives it. The frame-0-only ablation must
+// fail the same test where the scene reveals geometry.
+//
+// Lighting is made time invariant (ambient only): the paper shades fragments at frames 0 and 1 and mixes
+// the two, while the reference shades every sample at its own time, so a surface whose lighting changes
+// during the shutter (the spinning box under a directional light) differs by design; that part is
+// a known limit of the paper's method and not part of this test. The default job's spinning box is also
+// held still here: with it spinning, clipped differs from the accumulation buffer by 0.0044 RMSE at box
+// edges (an open problem, see docs/design.md "Known gaps").
+class AgainstStochastic : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AgainstStochastic, DifferenceIsExplainedBySamplingNoise) {
+    const std::string path = std::string(CLIPBLUR_SOURCE_DIR) + "/configs/" + GetParam();
+    const std::vector<std::string> common{"film.width=64", "film.height=36", "render.tile_size=16", "lights=[]",
+                                          "ambient=1"};
+    auto load = [&](std::vector<std::string> extra) {
+        extra.insert(extra.end(), common.begin(), common.end());
+        if (GetParam() == "default.yaml") extra.push_back("objects.2.transform=[]");
+        return loadJob(path, extra);
+    };
+    // Enough subframes that the time quadrature error is far below the sampling noise (see below for auto).
+    const RenderResult clipped = renderFrame(load({"render.method=clipped", "render.subframes=64"}), 0);
+    const RenderResult automatic = renderFrame(load({"render.method=clipped"}), 0);
+    const RenderResult s1 = renderFrame(load({"render.method=stochastic", "render.samples=400", "render.seed=1"}), 0);
+    const RenderResult s2 = renderFrame(load({"render.method=stochastic", "render.samples=400", "render.seed=2"}), 0);
+    const double variance = meanSquaredDifference(s1, s2) / 4.0;
+    const double ratio = meanSquaredDifference(clipped, averaged(s1, s2)) / variance;
+    RecordProperty("ratio", std::to_string(ratio));
+    // At `auto` subframes (about a pixel of motion per subframe) the midpoint rule errs by at most 1/(2N)
+    // in a pixel an edge crosses (ClippedRenderer.TranslatingQuadConvergesToExactTimeIntegratedCoverage),
+    // so the RMSE is bias-dominated; measured 0.004-0.006 on these scenes when this test was written, and
+    // held below 0.01 here as a regression bound (the noise of the 400-sample reference is ~0.002).
+    const double rmse_auto = std::sqrt(meanSquaredDifference(automatic, averaged(s1, s2)));
+    RecordProperty("rmse_auto", std::to_string(rmse_auto));
+    EXPECT_LT(rmse_auto, 0.01) << "subframes " << automatic.stats.counts.at("subframes_max_per_tile");
+    EXPECT_LT(ratio, 1.5) << "variance " << variance;
+}
+
+INSTANTIATE_TEST_SUITE_P(Configs, AgainstStochastic,
+                         ::testing::Values("default.yaml", "table1/spin.yaml", "table1/pan.yaml",
+                                           "table1/spin_pan.yaml", "table1/recede.yaml",
+                                           "table1/recede_spin_pan.yaml"),
+                         [](const auto& info) {
+                             std::string name = info.param.substr(info.param.find('/') + 1);
+                             return name.substr(0, name.find('.'));
+                         });
+
+// Triangles much smaller than a pixel: Embree's rays miss many of them, and the candidate rules (one-ring
+// of every hit, plus every triangle thinner than two ray spacings) must still hand the clipper every
+// visible one. The exhaustive candidate set (visibility_rays = 0) is the oracle; results must agree to
+// float rounding.
+TEST(Candidates, DenseMeshMatchesExhaustiveCandidates) {
+    const std::string text = R"(version: 1
+film: {width: 48, height: 32, background: 0.2}
+camera:
+  vfov: 30
+  keys: [{time: 0, position: [0, 0, -6], view: [0, 0, 1], up: [0, 1, 0]}]
+materials:
+  - {name: a, color: [0.9, 0.4, 0.2]}
+  - {name: b, color: [0.2, 0.6, 0.9], texture: {type: checker, color2: 0.1, scale: 0.5}}
+lights: [{type: directional, direction: [0.3, -0.5, 1]}]
+objects:
+  - {name: dense, material: a, primitive: {type: sphere, size: 2.5, segments: 360}}
+  - name: wall
+    material: b
+    primitive: {type: grid, size: [8, 8], divisions: [3, 3]}
+    transform: [{time: 0, translate: [0, 0, 3], rotate: {axis: [1, 0, 0], angle_deg: -90}}]
+render: {method: clipped, tile_size: 16}
+)";
+    RenderJob rays = loadJobFromText(text, "dense.yaml", {"render.visibility_rays=2"});
+    RenderJob all = loadJobFromText(text, "dense.yaml", {"render.visibility_rays=0"});
+    ASSERT_GT(rays.scene.objects[0].mesh.triangles.size(), 60000u);
+    const RenderResult a = renderFrame(rays, 0);
+    const RenderResult b = renderFrame(all, 0);
+    EXPECT_LE(a.stats.counts.at("open_candidates"), a.stats.counts.at("open_binned_triangles"));
+    for (std::size_t c = 0; c < 4; ++c)
+        for (std::size_t i = 0; i < a.image.channels[c].values.size(); ++i)
+            ASSERT_NEAR(a.image.channels[c].values[i], b.image.channels[c].values[i], 1e-6) << c << " " << i;
+}
+
+}  // namespace clipblur
