@@ -159,7 +159,8 @@ def gnuplot_chart(path_stem, title, series, xlabel, ylabel, logx=True, logy=True
             plots.append(f"'{dat}' index {i} using 1:2 with linespoints lw 2 pt {5 + i} title '{label}'")
             plots.append(f"'{dat}' index {i} using 1:2:3 with labels offset 0.8,0.6 font ',8' notitle")
     body = [
-        f"set title '{title}' noenhanced",
+        "set termoption noenhanced",
+        f"set title '{title}'",
         f"set xlabel '{xlabel}'", f"set ylabel '{ylabel}'",
         "set logscale x" if logx else "unset logscale x", "set logscale y" if logy else "unset logscale y",
         "set grid", "set key outside right top",

@@ -148,7 +148,7 @@ def main():
 
             series = []
             for method in ("clipped", "stochastic", "accumulation", "frame0_only"):
-                pts = [(r["seconds"], r["rmse"], r["param"]) for r in rows if r["scene"] == scene and r["method"] == method]
+                pts = [(r["seconds"], r["rmse"], "" if r["param"] == "-" else r["param"]) for r in rows if r["scene"] == scene and r["method"] == method]
                 if pts:
                     series.append((method, sorted(pts, key=lambda p: p[0])))
             benchlib.gnuplot_chart(out / "charts" / scene, f"{scene} ({args.width}x{args.height}, reference "
