@@ -32,8 +32,8 @@ SCENE = HERE / "gate_scene.yaml"
 THRESHOLDS = HERE / "thresholds.json"
 
 MODES = {
-    "short": {"width": 160, "height": 90, "repeats": 3, "samples": 64},
-    "full": {"width": 320, "height": 180, "repeats": 5, "samples": 64},
+    "short": {"width": 64, "height": 36, "repeats": 3, "samples": 64},
+    "full": {"width": 160, "height": 90, "repeats": 3, "samples": 64},
 }
 
 # Counts that depend only on the scene and the algorithm, not on timing or thread count.
