@@ -84,9 +84,9 @@ def summarise(rows):
             t = benchlib.time_to_reach(pts, a["rmse"])
             if t is None:
                 longest = max(p[0] for p in pts)
-                cells += [f"not reached (> {longest:.3f})", f"> {longest / a['seconds']:.2f}"]
+                cells += [f"not reached (> {longest:.3f})", f"> {longest / a['seconds']:.3g}"]
             else:
-                cells += [f"{t:.3f}", f"{t / a['seconds']:.2f}"]
+                cells += [f"{t:.3f}", f"{t / a['seconds']:.3g}"]
         f0 = [r for r in mine if r["method"] == "frame0_only"]
         cells.append(f"{f0[0]['rmse']:.4g}" if f0 else "-")
         lines.append("| " + " | ".join(cells) + " |")
