@@ -230,6 +230,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["subframes_max_per_tile"] = max_tile_subframes;
     stats.counts["capped_tiles"] = plan.capped_tiles;
     stats.counts["measured_fragment_paths"] = plan.measured;
+    stats.counts["near_crossing_fragments"] = plan.near_crossings;
     stats.counts["propagated_triangles"] = reclip_totals.propagated;
     stats.counts["reclip_near_clipped"] = reclip_totals.near_clipped;
     stats.counts["reclip_fragments"] = reclip_totals.fragments;

@@ -70,6 +70,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 r0 = static_cast<int>(std::clamp(std::floor(box.lo.y / size), 0.0, double(grid.rows())));
                 r1 = static_cast<int>(std::clamp(std::floor(box.hi.y / size), -1.0, double(grid.rows() - 1)));
             }
+            plan.near_crossings += m[i].crosses_near ? 1 : 0;
             for (int r = r0; r <= r1; ++r)
                 for (int c = c0; c <= c1; ++c)
                     plan.refs[static_cast<std::size_t>(r * grid.columns() + c)].push_back(
@@ -83,10 +84,16 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
         p = SubframePlan{};
         for (const FragmentRef& ref : refs) {
             const FragmentMotion& fm = motion[ref.layer][ref.index];
+            ++p.fragments;
+            // A fragment reaching the camera plane has unbounded image speed there: no subframe count
+            // resolves it, and letting it set the count would cap every tile it may touch (all of them).
+            // It is still re-clipped (cut in 3D at the plane) at the subframes the rest of the tile needs.
+            if (fm.crosses_near) {
+                ++p.near_crossings;
+                continue;
+            }
             p.max_path_pixels = std::max(p.max_path_pixels, fm.max_path_pixels);
             p.max_sweep_pixels = std::max(p.max_sweep_pixels, fm.max_sweep_pixels);
-            p.near_crossings += fm.crosses_near ? 1 : 0;
-            ++p.fragments;
         }
         p.count = subframes > 0 ? std::min(subframes, max_subframes)
                                 : subframeCount(p.max_sweep_pixels, max_subframes, &p.capped);

@@ -14,6 +14,7 @@ struct MotionPlan {
     std::vector<SubframePlan> tiles;
     long long capped_tiles = 0;
     long long measured = 0;     // fragment triangles whose path was sampled
+    long long near_crossings = 0;  // fragment triangles reaching the camera plane during the shutter
 };
 
 // Measures every fragment triangle's swept raster box and peak speed over [t0, t1] (triangles of objects
