@@ -17,8 +17,10 @@ Action addValidateCommand(CLI::App& app);
 Action addPathsCommand(CLI::App& app);
 
 // `clipblur render JOB [--set k=v]... [--threads N] [--frames A-B] [--out PATH] [--stats PATH]
-// [--progress auto|bar|lines|none]`: renders every frame to OpenEXR (plus stats JSON and an optional PNG
-// preview). SIGINT/SIGTERM stop at the next tile without writing the frame; exit code 130.
+// [--progress auto|bar|lines|none] [--tile I/N]`: renders every frame to OpenEXR (plus stats JSON and an
+// optional PNG preview). With --tile only shard I of N is rendered, into the frame's shard path with its
+// data window, and a shard already complete is skipped. SIGINT/SIGTERM stop at the next tile without
+// writing the frame; exit code 130.
 Action addRenderCommand(CLI::App& app);
 
 Action addMergeCommand(CLI::App& app);

@@ -60,7 +60,7 @@ MergeTarget resolveTarget(const MergeOptions& o) {
 bool check(const MergeOptions& o, const MergeTarget& t) {
     bool complete = true;
     for (int f = t.frames.first; f <= t.frames.last; ++f) {
-        const std::string path = expandFramePath(t.pattern, f);
+        const std::string path = outputPathForFrame(t.pattern, f, t.frames.first, t.frames.last);
         if (frameIsMerged(path, t.expected)) continue;
         const ShardSetCheck shards = checkShards(path, o.tiles, t.expected);
         for (std::size_t k = 0; k < shards.incomplete.size(); ++k) {
@@ -74,7 +74,7 @@ bool check(const MergeOptions& o, const MergeTarget& t) {
 
 int merge(const MergeOptions& o, const MergeTarget& t) {
     for (int f = t.frames.first; f <= t.frames.last; ++f) {
-        const std::string path = expandFramePath(t.pattern, f);
+        const std::string path = outputPathForFrame(t.pattern, f, t.frames.first, t.frames.last);
         const ShardSetCheck shards = checkShards(path, o.tiles, t.expected);
         // Shards may be cleaned up after a merge; a complete merged frame then counts as done.
         if (!shards.complete() && frameIsMerged(path, t.expected)) {

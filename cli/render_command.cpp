@@ -4,7 +4,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -15,7 +14,8 @@
 #include "cli/commands.h"
 #include "io/image_writer.h"
 #include "io/job_loader.h"
-#include "io/output_path.h"
+#include "io/frame_path.h"
+#include "io/shard.h"
 #include "io/stats_writer.h"
 #include "renderer/render.h"
 #include "scene/error.h"
@@ -60,22 +60,6 @@ const char* methodName(Method m) {
         case Method::Frame0Only: return "frame0_only";
     }
     return "?";
-}
-
-// "A" or "A-B", frames possibly negative ("-3--1").
-std::pair<int, int> parseFrames(const std::string& text) {
-    static const std::regex pattern(R"(^\s*(-?\d+)\s*(?:-\s*(-?\d+))?\s*$)");
-    std::smatch m;
-    if (!std::regex_match(text, m, pattern))
-        throw Error(ExitCode::Usage, "--frames expects A or A-B, got '" + text + "'");
-    try {
-        const int first = std::stoi(m[1].str());
-        const int last = m[2].matched ? std::stoi(m[2].str()) : first;
-        if (last < first) throw Error(ExitCode::Usage, "--frames " + text + ": the last frame precedes the first");
-        return {first, last};
-    } catch (const std::out_of_range&) {
-        throw Error(ExitCode::Usage, "--frames " + text + ": frame number out of range");
-    }
 }
 
 enum class ProgressStyle { Bar, Lines, None };
@@ -131,6 +115,7 @@ Action addRenderCommand(CLI::App& app) {
         std::string out;
         std::string stats;
         std::string progress = "auto";
+        std::string tile;
     };
     auto opts = std::make_shared<Options>();
     CLI::App* sub = app.add_subcommand("render", "Render the frames of a job to OpenEXR");
@@ -143,16 +128,32 @@ Action addRenderCommand(CLI::App& app) {
     sub->add_option("--stats", opts->stats, "Stats JSON path (default: beside the image); #### allowed");
     sub->add_option("--progress", opts->progress, "Progress display")
         ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
+    sub->add_option("--tile", opts->tile,
+                    "Render shard I of N only (I/N), to <image>.tile-I-of-N.exr; a complete shard is skipped");
 
     return [opts]() {
         RenderJob job = loadJob(opts->job, opts->overrides);
-        if (!opts->frames.empty()) std::tie(job.frames.first, job.frames.last) = parseFrames(opts->frames);
+        if (!opts->frames.empty()) {
+            const FrameRange range = parseFrameRange(opts->frames);
+            job.frames.first = range.first;
+            job.frames.last = range.last;
+        }
+        std::optional<TileShard> shard;
+        if (!opts->tile.empty()) {
+            shard = parseTileShard(opts->tile);
+            job.render.window = shardWindow(job.scene.film.width, job.scene.film.height, *shard);
+        }
         const std::string image_pattern = opts->out.empty() ? job.output.path : opts->out;
         const std::string stats_pattern = opts->stats.empty() ? job.output.stats_path : opts->stats;
+        // A shard's files carry its tag, so the N shards of a frame never write the same path.
+        const auto pathFor = [&](const std::string& pattern, int frame) {
+            const std::string path = outputPathForFrame(pattern, frame, job.frames.first, job.frames.last);
+            return shard ? shardPath(path, *shard) : path;
+        };
         // Resolve every path before rendering so a bad pattern fails before any work is done.
         for (int f = job.frames.first; f <= job.frames.last; ++f) {
-            outputPathForFrame(image_pattern, f, job.frames.first, job.frames.last);
-            if (!stats_pattern.empty()) outputPathForFrame(stats_pattern, f, job.frames.first, job.frames.last);
+            pathFor(image_pattern, f);
+            if (!stats_pattern.empty()) pathFor(stats_pattern, f);
         }
 
         std::optional<tbb::global_control> limit;
@@ -163,6 +164,14 @@ Action addRenderCommand(CLI::App& app) {
 
         StopSignals signals;
         for (int frame = job.frames.first; frame <= job.frames.last; ++frame) {
+            const std::string image_path = pathFor(image_pattern, frame);
+            // A requeued farm element must not redo finished work; the config hash makes a shard of an
+            // older job count as missing.
+            if (shard && shardIsComplete(image_path, job.scene.film.width, job.scene.film.height, *shard,
+                                         job.config_hash)) {
+                std::cout << "frame " << frame << ": " << image_path << " complete, skipped\n" << std::flush;
+                continue;
+            }
             ProgressPrinter printer(style, frame);
             RenderCallbacks callbacks;
             callbacks.cancel = &g_cancel;
@@ -170,7 +179,6 @@ Action addRenderCommand(CLI::App& app) {
             RenderResult result = renderFrame(job, frame, callbacks);
             if (g_cancel.load()) throw Error(ExitCode::Interrupted, "interrupted; frame " + std::to_string(frame) + " not written");
 
-            const std::string image_path = outputPathForFrame(image_pattern, frame, job.frames.first, job.frames.last);
             ImageMetadata meta;
             meta.method = methodName(job.render.method);
             if (job.render.method == Method::Stochastic || job.render.method == Method::Accumulation)
@@ -181,16 +189,21 @@ Action addRenderCommand(CLI::App& app) {
             meta.config_hash = job.config_hash;
             if (const auto it = result.stats.seconds.find("total"); it != result.stats.seconds.end())
                 meta.render_seconds = it->second;
+            if (shard) {
+                meta.tile_index = shard->index;
+                meta.tile_count = shard->count;
+                result.stats.info["window"] = toString(result.image.window());
+            }
             writeExr(image_path, result.image, meta, job.output.half);
             std::cout << "frame " << frame << ": wrote " << image_path;
-            if (job.output.png_preview) {
+            // A shard's preview would be mostly black; previews belong to whole frames.
+            if (job.output.png_preview && !shard) {
                 const std::string png = pngPathFor(image_path);
                 writePngPreview(png, result.image);
                 std::cout << " and " << png;
             }
             const std::string stats_path =
-                stats_pattern.empty() ? defaultStatsPath(image_path)
-                                      : outputPathForFrame(stats_pattern, frame, job.frames.first, job.frames.last);
+                stats_pattern.empty() ? defaultStatsPath(image_path) : pathFor(stats_pattern, frame);
             writeStats(stats_path, statsToJson(result.stats, frame, image_path, threads));
             std::cout << " (stats " << stats_path << ")\n" << std::flush;
         }

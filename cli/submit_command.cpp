@@ -77,7 +77,7 @@ int submit(const SubmitOptions& o) {
     plan.tiles = o.tiles;
     plan.partition = o.partition;
     plan.cpus_per_task = o.cpus_per_task;
-    const fs::path firstFrame = fs::absolute(expandFramePath(job.output.path, plan.first_frame));
+    const fs::path firstFrame = fs::absolute(outputPathForFrame(job.output.path, plan.first_frame, plan.first_frame, plan.last_frame));
     plan.farm_dir = (firstFrame.parent_path() / ".clipblur-farm").lexically_normal();
 
     FrameExpectation expected;
@@ -86,7 +86,7 @@ int submit(const SubmitOptions& o) {
     expected.config_hash = job.config_hash;
     std::vector<int> pending;
     for (int f = plan.first_frame; f <= plan.last_frame; ++f)
-        for (int tile : pendingShards(expandFramePath(job.output.path, f), plan.tiles, expected))
+        for (int tile : pendingShards(outputPathForFrame(job.output.path, f, plan.first_frame, plan.last_frame), plan.tiles, expected))
             pending.push_back(elementId(plan, f, tile));
 
     const std::string merge = mergeScript(plan);
@@ -118,7 +118,7 @@ int submit(const SubmitOptions& o) {
         // frames on disk are the only trustworthy verdict.
         std::vector<std::string> unmerged;
         for (int f = plan.first_frame; f <= plan.last_frame; ++f) {
-            const std::string path = expandFramePath(job.output.path, f);
+            const std::string path = outputPathForFrame(job.output.path, f, plan.first_frame, plan.last_frame);
             if (!frameIsMerged(path, expected)) unmerged.push_back(path);
         }
         if (!unmerged.empty()) {

@@ -8,6 +8,7 @@
 
 #include "clipblur/version.h"
 #include "io/atomic_file.h"
+#include "io/shard.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -63,8 +64,12 @@ void writeExr(const std::filesystem::path& path, const Image& image, const Image
         if (metadata.subframes >= 0) spec.attribute("clipblur:subframes", metadata.subframes);
         // 64-bit seeds do not fit an int attribute; a decimal string keeps them exact.
         spec.attribute("clipblur:seed", std::to_string(metadata.seed));
-        spec.attribute("clipblur:configHash", metadata.config_hash);
+        spec.attribute(kConfigHashKey, metadata.config_hash);
         spec.attribute("clipblur:renderSeconds", static_cast<float>(metadata.render_seconds));
+        if (metadata.tile_count >= 1) {
+            spec.attribute(kTileIndexKey, metadata.tile_index);
+            spec.attribute(kTileCountKey, metadata.tile_count);
+        }
 
         const std::size_t n = static_cast<std::size_t>(image.data_width) * image.data_height;
         std::vector<float> interleaved(n * static_cast<std::size_t>(nc));

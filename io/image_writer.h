@@ -16,6 +16,8 @@ struct ImageMetadata {
     std::uint64_t seed = 0;
     std::string config_hash;
     double render_seconds = 0.0;
+    int tile_index = -1;  // a shard of `render --tile I/N`: I and N; omitted when tile_count < 1
+    int tile_count = 0;
 };
 
 // OpenEXR with the image's channels in order (R, G, B, A, then AOVs), half or float, its data window

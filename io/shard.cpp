@@ -14,20 +14,6 @@ namespace clipblur {
 
 namespace fs = std::filesystem;
 
-std::string toString(const DataWindow& w) {
-    // Appending, not "[" + to_string(...): GCC 12 warns falsely (-Wrestrict, bug 105651) on the latter.
-    std::string s = "[";
-    s += std::to_string(w.x0);
-    s += ",";
-    s += std::to_string(w.x0 + w.width);
-    s += ")x[";
-    s += std::to_string(w.y0);
-    s += ",";
-    s += std::to_string(w.y0 + w.height);
-    s += ")";
-    return s;
-}
-
 static bool parseInt(std::string_view text, int& value) {
     if (text.empty()) return false;
     const char* end = text.data() + text.size();

@@ -5,21 +5,9 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/data_window.h"
+
 namespace clipblur {
-
-// A rectangle of pixels inside a display window whose origin is (0, 0); half-open: [x0, x0+width).
-struct DataWindow {
-    int x0 = 0;
-    int y0 = 0;
-    int width = 0;
-    int height = 0;
-
-    bool empty() const { return width <= 0 || height <= 0; }
-    bool contains(int x, int y) const { return x >= x0 && x < x0 + width && y >= y0 && y < y0 + height; }
-    friend bool operator==(const DataWindow&, const DataWindow&) = default;
-};
-
-std::string toString(const DataWindow& w);
 
 // Shard `index` of `count` equal-ish parts of one frame, as given to `render --tile I/N`.
 struct TileShard {

@@ -3,11 +3,19 @@
 namespace clipblur {
 
 Image Image::make(int width, int height, const std::vector<std::string>& names) {
+    return make(width, height, DataWindow{0, 0, width, height}, names);
+}
+
+Image Image::make(int width, int height, const DataWindow& window, const std::vector<std::string>& names) {
     Image image;
-    image.width = image.data_width = width;
-    image.height = image.data_height = height;
-    for (const auto& name : names)
-        image.channels.push_back({name, std::vector<float>(static_cast<std::size_t>(width) * height, 0.0f)});
+    image.width = width;
+    image.height = height;
+    image.x0 = window.x0;
+    image.y0 = window.y0;
+    image.data_width = window.width;
+    image.data_height = window.height;
+    const std::size_t n = static_cast<std::size_t>(window.width) * static_cast<std::size_t>(window.height);
+    for (const auto& name : names) image.channels.push_back({name, std::vector<float>(n, 0.0f)});
     return image;
 }
 

@@ -1,8 +1,11 @@
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "scene/data_window.h"
 
 namespace clipblur {
 
@@ -23,6 +26,13 @@ struct Image {
     std::vector<Channel> channels;
 
     static Image make(int width, int height, const std::vector<std::string>& names);
+    // Zeroed channels over `window` only, inside a width x height display window.
+    static Image make(int width, int height, const DataWindow& window, const std::vector<std::string>& names);
+    DataWindow window() const { return {x0, y0, data_width, data_height}; }
+    // Row-major index into the channel values of display pixel (x, y), which must be inside window().
+    std::size_t index(int x, int y) const {
+        return static_cast<std::size_t>(y - y0) * static_cast<std::size_t>(data_width) + static_cast<std::size_t>(x - x0);
+    }
     Channel* find(const std::string& name);
     const Channel* find(const std::string& name) const;
 };

@@ -22,6 +22,17 @@ const char* methodName(Method method) {
 
 }  // namespace
 
+DataWindow renderWindow(const RenderJob& job) {
+    const int width = job.scene.film.width;
+    const int height = job.scene.film.height;
+    if (!job.render.window) return {0, 0, width, height};
+    const DataWindow& w = *job.render.window;
+    if (w.empty() || w.x0 < 0 || w.y0 < 0 || w.x0 > width - w.width || w.y0 > height - w.height)
+        throw Error(ExitCode::Render, "render window " + toString(w) + " is empty or not inside the " +
+                                          std::to_string(width) + "x" + std::to_string(height) + " film");
+    return w;
+}
+
 RenderResult renderFrame(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     switch (job.render.method) {
         case Method::Stochastic:

@@ -14,9 +14,13 @@ struct RenderCallbacks {
 };
 
 struct RenderResult {
-    Image image;  // R, G, B, A and the AOVs the job asks for
+    Image image;  // R, G, B, A and the AOVs the job asks for, over renderWindow(job) only
     RenderStats stats;
 };
+
+// The pixels a render of `job` computes: job.render.window, or the whole film when unset. Throws
+// Error(ExitCode::Render) for an empty window or one reaching outside the film.
+DataWindow renderWindow(const RenderJob& job);
 
 // Renders frame `frame` of the job with the job's method. Throws Error(ExitCode::Interrupted) when cancelled.
 RenderResult renderFrame(const RenderJob& job, int frame, const RenderCallbacks& callbacks = {});

@@ -1,9 +1,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "scene/data_window.h"
 #include "scene/scene.h"
 
 namespace clipblur {
@@ -33,6 +35,9 @@ struct RenderSettings {
     bool shadows = false;
     std::uint64_t seed = 0;
     int tile_size = 32;
+    // The pixels to compute; unset means the whole film. Not part of the job file (render --tile sets
+    // it per shard), so every shard of a frame shares the job's config hash.
+    std::optional<DataWindow> window;
 };
 
 struct OutputSettings {

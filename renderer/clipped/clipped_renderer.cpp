@@ -147,7 +147,10 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
 
     // 3-5. Per tile and subframe: propagate, re-clip, reduce; tiles accumulate their subframes in order.
     stage = Clock::now();
-    result.image = Image::make(scene.film.width, scene.film.height, channelNames(job.output));
+    // Visibility and the subframe plan above stay global so a window's pixels are bit-identical to the
+    // same pixels of the whole film; only the tiles the window touches are resolved.
+    const DataWindow window = renderWindow(job);
+    result.image = Image::make(scene.film.width, scene.film.height, window, channelNames(job.output));
     ImageWriter writer(result.image, scene.film.background);
     std::atomic<bool> cancelled{false};
     std::atomic<long long> tiles_done{0};
@@ -161,6 +164,14 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
             return;
         }
         const Tile tile = grid.tile(index);
+        if (!window.overlaps(tile.x0, tile.y0, tile.x1, tile.y1)) {
+            const long long done = ++tiles_done;
+            if (callbacks.progress) {
+                std::lock_guard lock(merge_mutex);
+                callbacks.progress(done, grid.count());
+            }
+            return;
+        }
         const SubframePlan& tile_plan = plan.tiles[static_cast<std::size_t>(index)];
         const auto& refs = plan.refs[static_cast<std::size_t>(index)];
         // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
@@ -177,11 +188,12 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
             reclipSubframe(scene, shader, snapshot, (t - t0) / (t1 - t0), layers, refs, tile, scratch,
                            sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
         });
-        for (int y = tile.y0; y < tile.y1; ++y) {
-            for (int x = tile.x0; x < tile.x1; ++x) {
+        for (int y = std::max(tile.y0, window.y0); y < std::min(tile.y1, window.y1()); ++y) {
+            for (int x = std::max(tile.x0, window.x0); x < std::min(tile.x1, window.x1()); ++x) {
                 const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
+                const std::size_t out = result.image.index(x, y);
                 if (still_tile) {
-                    writer.write(pixel, still.colour[pixel], still.covered[pixel], still.depth[pixel], glm::dvec2(0.0));
+                    writer.write(out, still.colour[pixel], still.covered[pixel], still.depth[pixel], glm::dvec2(0.0));
                     continue;
                 }
                 const std::size_t i = static_cast<std::size_t>(y - tile.y0) * tile.width() + (x - tile.x0);
@@ -195,7 +207,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                     motion += s.motion[i];
                 }
                 const double w = 1.0 / n;
-                writer.write(pixel, colour * w, covered * w, depth * w, motion * w);
+                writer.write(out, colour * w, covered * w, depth * w, motion * w);
             }
         }
         {
@@ -276,10 +288,16 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
         }
     }
     RenderResult result;
-    result.image = Image::make(scene.film.width, scene.film.height, channelNames(job.output));
+    const DataWindow window = renderWindow(job);
+    result.image = Image::make(scene.film.width, scene.film.height, window, channelNames(job.output));
     ImageWriter writer(result.image, scene.film.background);
-    for (std::size_t p = 0; p < pixels; ++p)
-        writer.write(p, total.colour[p] / double(n), total.covered[p] / double(n), total.depth[p] / double(n), glm::dvec2(0.0));
+    for (int y = window.y0; y < window.y1(); ++y) {
+        for (int x = window.x0; x < window.x1(); ++x) {
+            const std::size_t p = static_cast<std::size_t>(y) * scene.film.width + x;
+            writer.write(result.image.index(x, y), total.colour[p] / double(n), total.covered[p] / double(n),
+                         total.depth[p] / double(n), glm::dvec2(0.0));
+        }
+    }
     RenderStats& stats = result.stats;
     stats.info["method"] = "accumulation";
     stats.counts["frame"] = frame;

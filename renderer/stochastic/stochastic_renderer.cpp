@@ -64,11 +64,14 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     const CameraPath camera_path(scene.camera);
     const CameraFrame camera_open = camera_path.at(t0);
     const CameraFrame camera_close = camera_path.at(t1);
-    const TileGrid grid(width, height, job.render.tile_size);
+    // Tiles cover the render window only; every pixel's samples are keyed by its film position, so a
+    // window renders exactly the pixels the whole film would.
+    const DataWindow window = renderWindow(job);
+    const TileGrid grid(window.width, window.height, job.render.tile_size);
     const OutputSettings& out = job.output;
 
     RenderResult result;
-    result.image = Image::make(width, height, channelNames(out));
+    result.image = Image::make(width, height, window, channelNames(out));
     Image& image = result.image;
     float* rgba[4];
     for (int c = 0; c < 4; ++c) rgba[c] = image.channels[static_cast<std::size_t>(c)].values.data();
@@ -96,11 +99,12 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                 continue;
             }
             const Tile tile = grid.tile(task);
-            for (int y = tile.y0; y < tile.y1; ++y) {
-                for (int x = tile.x0; x < tile.x1; ++x) {
-                    const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
-                    generatePixelSamples(HashRng::forKey(job.render.seed, frame_key, pixel), samples, pixel_samples,
-                                         scratch);
+            for (int y = window.y0 + tile.y0; y < window.y0 + tile.y1; ++y) {
+                for (int x = window.x0 + tile.x0; x < window.x0 + tile.x1; ++x) {
+                    const std::size_t film_pixel = static_cast<std::size_t>(y) * width + x;
+                    const std::size_t pixel = image.index(x, y);
+                    generatePixelSamples(HashRng::forKey(job.render.seed, frame_key, film_pixel), samples,
+                                         pixel_samples, scratch);
                     glm::dvec3 colour(0.0);
                     double covered = 0.0;
                     double depth_sum = 0.0;
@@ -168,7 +172,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     const EmbreeSceneStats& vs = visibility.stats();
     stats.counts["frame"] = frame;
     stats.counts["samples_per_pixel"] = samples;
-    stats.counts["samples"] = static_cast<long long>(width) * height * samples;
+    stats.counts["samples"] = static_cast<long long>(window.width) * window.height * samples;
     stats.counts["primary_rays"] = totals.primary_rays;
     stats.counts["shadow_rays"] = totals.shadow_rays;
     stats.counts["rays"] = totals.primary_rays + totals.shadow_rays;

@@ -1,16 +1,18 @@
 #include <filesystem>
 #include <fstream>
+#include <string_view>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/output_path.h"
+#include "io/frame_path.h"
 #include "io/stats_writer.h"
 #include "scene/error.h"
 
 namespace clipblur {
 
-TEST(OutputPath, HashRunsBecomeZeroPaddedFrames) {
+TEST(FramePath, HashRunsBecomeZeroPaddedFrames) {
     EXPECT_EQ(framePath("shot.####.exr", 12), "shot.0012.exr");
     EXPECT_EQ(framePath("shot.#.exr", 123), "shot.123.exr");
     EXPECT_EQ(framePath("a##/b####.exr", 7), "a07/b0007.exr");
@@ -18,7 +20,7 @@ TEST(OutputPath, HashRunsBecomeZeroPaddedFrames) {
     EXPECT_EQ(framePath("plain.exr", 3), "plain.exr");
 }
 
-TEST(OutputPath, SeveralFramesNeedAPattern) {
+TEST(FramePath, SeveralFramesNeedAPattern) {
     EXPECT_EQ(outputPathForFrame("one.exr", 5, 5, 5), "one.exr");
     EXPECT_EQ(outputPathForFrame("s.##.exr", 6, 5, 9), "s.06.exr");
     try {
@@ -29,8 +31,28 @@ TEST(OutputPath, SeveralFramesNeedAPattern) {
     }
 }
 
-TEST(OutputPath, StatsSitBesideTheImage) {
+TEST(FramePath, StatsSitBesideTheImage) {
     EXPECT_EQ(defaultStatsPath("out/shot.0012.exr"), "out/shot.0012.stats.json");
+}
+
+TEST(FramePath, RangesMayBeNegative) {
+    const auto range = [](std::string_view text) {
+        const FrameRange r = parseFrameRange(text);
+        return std::pair(r.first, r.last);
+    };
+    EXPECT_EQ(range("7"), std::pair(7, 7));
+    EXPECT_EQ(range("1-24"), std::pair(1, 24));
+    EXPECT_EQ(range("-3--1"), std::pair(-3, -1));
+    EXPECT_EQ(range("-2-5"), std::pair(-2, 5));
+    EXPECT_EQ(range("-4"), std::pair(-4, -4));
+    for (const char* bad : {"", "a", "1-", "-", "3-1", "1-2-3", " 1", "1..2", "99999999999"}) {
+        try {
+            parseFrameRange(bad);
+            ADD_FAILURE() << "accepted \"" << bad << "\"";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ExitCode::Usage) << bad;
+        }
+    }
 }
 
 TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
