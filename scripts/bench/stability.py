@@ -105,10 +105,10 @@ def main():
             benchlib.gnuplot_chart(out / "charts" / name, f"{name}: error vs stress", list(series.items()), xlabel,
                                    "RMSE vs reference", logx=False, logy=True)
 
-        topo = BENCH / "topology_change.yaml"
+        topo = BENCH / "refused" / "topology_change.yaml"
         r = subprocess.run([clipblur, "validate", str(topo)], capture_output=True, text=True)
         md += ["### topology change between deformation keys", "",
-               f"`clipblur validate configs/bench/topology_change.yaml` exit {r.returncode}:", "",
+               f"`clipblur validate configs/bench/refused/topology_change.yaml` exit {r.returncode}:", "",
                "    " + (r.stderr.strip() or r.stdout.strip()).replace("\n", "\n    "), ""]
         out.mkdir(parents=True, exist_ok=True)
         with open(out / "stability.csv", "w", newline="") as f:

@@ -363,6 +363,15 @@ TEST(JobLoader, EveryShippedConfigLoads) {
         const auto ext = entry.path().extension();
         if (entry.path().parent_path().filename() == "schema" || (ext != ".yaml" && ext != ".json")) continue;
         SCOPED_TRACE(entry.path().string());
+        if (entry.path().parent_path().filename() == "refused") {  // shipped to show a clean refusal
+            try {
+                loadJob(entry.path());
+                ADD_FAILURE() << "expected a scene error";
+            } catch (const Error& e) {
+                EXPECT_EQ(e.code(), ExitCode::Scene);
+            }
+            continue;
+        }
         const RenderJob job = loadJob(entry.path());
         EXPECT_TRUE(job.warnings.empty());
         EXPECT_EQ(job.render.method, Method::Clipped);
