@@ -10,3 +10,5 @@ ctest --test-dir build --output-on-failure -j "$(nproc)"
 bash scripts/build.sh sanitize
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE slow
+# The job loader under libFuzzer (clang, ASan+UBSan) for a bounded time, seeded from configs/.
+bash scripts/fuzz.sh "${CLIPBLUR_FUZZ_SECONDS:-60}"
