@@ -57,11 +57,15 @@ TEST(RenderCommand, SeveralFramesWithoutAPatternIsAUsageError) {
 TEST(RenderCommand, InterruptStopsWithoutOutputAndExits130) {
     const fs::path dir = freshDir("clipblur_cli_interrupt");
     const fs::path out = dir / "slow.exr";
-    // Big enough to still be rendering after a second even on a fast machine (640x360, 256 samples).
+    const fs::path log = dir / "progress.txt";
+    // Big enough to still be rendering long after its first tile (640x360, 256 samples). The signal is
+    // sent once a progress line shows the render (and so the handler) is running: a fixed sleep raced
+    // with start-up on a loaded machine, where a background job of `sh -c` still ignores SIGINT.
     const std::string render = std::string(CLIPBLUR_BINARY) + " render " + CLIPBLUR_SOURCE_DIR +
                                "/configs/default.yaml --set render.method=stochastic --set render.samples=256" +
-                               " --progress none --out " + out.string();
-    const std::string script = render + " 2>/dev/null & pid=$!; sleep 1; kill -INT $pid; wait $pid; exit $?";
+                               " --progress lines --out " + out.string() + " 2>" + log.string();
+    const std::string script = render + " & pid=$!; i=0; while [ ! -s " + log.string() +
+                               " ] && [ $i -lt 600 ]; do sleep 0.1; i=$((i+1)); done; kill -INT $pid; wait $pid; exit $?";
     EXPECT_EQ(run("sh -c '" + script + "'"), 130);
     EXPECT_FALSE(fs::exists(out));
 }
