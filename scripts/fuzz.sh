@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 CLIPBLUR_FUZZ=1 bash scripts/setup.sh
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DCLIPBLUR_FUZZ=ON -DCLIPBLUR_SANITIZE=ON -DCLIPBLUR_BENCH=OFF >/dev/null
 cmake --build build-fuzz --target job_loader_fuzz -j "${CLIPBLUR_JOBS:-$(nproc)}"
 
