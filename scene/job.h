@@ -31,7 +31,7 @@ struct RenderSettings {
     int max_subframes = 256;
     PathMethod path_method = PathMethod::Exact;
     int ode_steps = 16;        // per subframe interval, Euler and RK4 only
-    int visibility_rays = 4;   // Embree candidate rays per pixel side (n x n per pixel)
+    int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)
     bool shadows = false;
     std::uint64_t seed = 0;
     int tile_size = 32;
