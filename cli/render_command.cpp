@@ -52,15 +52,6 @@ private:
     struct sigaction previous_term_ {};
 };
 
-const char* methodName(Method m) {
-    switch (m) {
-        case Method::Clipped: return "clipped";
-        case Method::Stochastic: return "stochastic";
-        case Method::Accumulation: return "accumulation";
-        case Method::Frame0Only: return "frame0_only";
-    }
-    return "?";
-}
 
 enum class ProgressStyle { Bar, Lines, None };
 

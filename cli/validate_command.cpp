@@ -9,19 +9,6 @@
 
 namespace clipblur::cli {
 
-namespace {
-
-const char* methodName(Method m) {
-    switch (m) {
-        case Method::Clipped: return "clipped";
-        case Method::Stochastic: return "stochastic";
-        case Method::Accumulation: return "accumulation";
-        case Method::Frame0Only: return "frame0_only";
-    }
-    return "?";
-}
-
-}  // namespace
 
 Action addValidateCommand(CLI::App& app) {
     struct Options {

@@ -31,4 +31,15 @@ const Image::Channel* Image::find(const std::string& name) const {
     return nullptr;
 }
 
+std::vector<std::string> outputChannels(const OutputSettings& output) {
+    std::vector<std::string> names{"R", "G", "B", "A"};
+    if (output.aov_depth) names.push_back("Z");
+    if (output.aov_coverage) names.push_back("coverage");
+    if (output.aov_motion) {
+        names.push_back("motion.x");
+        names.push_back("motion.y");
+    }
+    return names;
+}
+
 }  // namespace clipblur

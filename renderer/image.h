@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/data_window.h"
+#include "scene/job.h"
 
 namespace clipblur {
 
@@ -36,6 +37,9 @@ struct Image {
     Channel* find(const std::string& name);
     const Channel* find(const std::string& name) const;
 };
+
+// The channels an image for `output` carries: R, G, B, A, then Z, coverage, motion.x, motion.y as asked.
+std::vector<std::string> outputChannels(const OutputSettings& output);
 
 // Counters and timings of one render, written to the stats JSON; ordered so output is deterministic.
 struct RenderStats {

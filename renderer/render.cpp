@@ -8,20 +8,6 @@
 
 namespace clipblur {
 
-namespace {
-
-const char* methodName(Method method) {
-    switch (method) {
-        case Method::Clipped: return "clipped";
-        case Method::Stochastic: return "stochastic";
-        case Method::Accumulation: return "accumulation";
-        case Method::Frame0Only: return "frame0_only";
-    }
-    return "unknown";
-}
-
-}  // namespace
-
 DataWindow renderWindow(const RenderJob& job) {
     const int width = job.scene.film.width;
     const int height = job.scene.film.height;

@@ -13,6 +13,9 @@ namespace clipblur {
 enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
 enum class PathMethod { Exact, Euler, RK4 };
 
+// The name a job file uses for the method.
+const char* methodName(Method method);
+
 struct Shutter {
     double open = 0.0;   // offsets within the frame, 0 <= open <= close <= 1
     double close = 1.0;

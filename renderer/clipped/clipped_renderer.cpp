@@ -1,7 +1,6 @@
 #include "renderer/clipped/clipped_renderer.h"
 
 #include <atomic>
-#include <chrono>
 #include <limits>
 #include <mutex>
 
@@ -12,6 +11,7 @@
 #include "renderer/clipped/guard_band.h"
 #include "renderer/clipped/motion_plan.h"
 #include "renderer/clipped/subframe_reclip.h"
+#include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
 #include "renderer/visibility/embree_scene.h"
 #include "scene/error.h"
@@ -19,21 +19,6 @@
 namespace clipblur {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-std::vector<std::string> channelNames(const OutputSettings& out) {
-    std::vector<std::string> names{"R", "G", "B", "A"};
-    if (out.aov_depth) names.push_back("Z");
-    if (out.aov_coverage) names.push_back("coverage");
-    if (out.aov_motion) {
-        names.push_back("motion.x");
-        names.push_back("motion.y");
-    }
-    return names;
-}
 
 // Writes one pixel's averaged sums (colour, covered area, depth and motion sums) over the background.
 struct ImageWriter {
@@ -150,7 +135,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     // Visibility and the subframe plan above stay global so a window's pixels are bit-identical to the
     // same pixels of the whole film; only the tiles the window touches are resolved.
     const DataWindow window = renderWindow(job);
-    result.image = Image::make(scene.film.width, scene.film.height, window, channelNames(job.output));
+    result.image = Image::make(scene.film.width, scene.film.height, window, outputChannels(job.output));
     ImageWriter writer(result.image, scene.film.background);
     std::atomic<bool> cancelled{false};
     std::atomic<long long> tiles_done{0};
@@ -289,7 +274,7 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     }
     RenderResult result;
     const DataWindow window = renderWindow(job);
-    result.image = Image::make(scene.film.width, scene.film.height, window, channelNames(job.output));
+    result.image = Image::make(scene.film.width, scene.film.height, window, outputChannels(job.output));
     ImageWriter writer(result.image, scene.film.background);
     for (int y = window.y0; y < window.y1(); ++y) {
         for (int x = window.x0; x < window.x1(); ++x) {

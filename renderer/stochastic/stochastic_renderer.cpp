@@ -1,6 +1,5 @@
 #include "renderer/stochastic/stochastic_renderer.h"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -13,6 +12,7 @@
 #include "renderer/camera_path.h"
 #include "renderer/sampling/pixel_samples.h"
 #include "renderer/shading/shading.h"
+#include "renderer/stopwatch.h"
 #include "renderer/tiles.h"
 #include "renderer/visibility/embree_scene.h"
 #include "scene/camera.h"
@@ -21,21 +21,6 @@
 namespace clipblur {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-std::vector<std::string> channelNames(const OutputSettings& out) {
-    std::vector<std::string> names{"R", "G", "B", "A"};
-    if (out.aov_depth) names.push_back("Z");
-    if (out.aov_coverage) names.push_back("coverage");
-    if (out.aov_motion) {
-        names.push_back("motion.x");
-        names.push_back("motion.y");
-    }
-    return names;
-}
 
 struct TileCounters {
     long long primary_rays = 0;
@@ -71,7 +56,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     const OutputSettings& out = job.output;
 
     RenderResult result;
-    result.image = Image::make(width, height, window, channelNames(out));
+    result.image = Image::make(width, height, window, outputChannels(out));
     Image& image = result.image;
     float* rgba[4];
     for (int c = 0; c < 4; ++c) rgba[c] = image.channels[static_cast<std::size_t>(c)].values.data();
