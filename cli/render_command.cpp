@@ -174,7 +174,8 @@ Action addRenderCommand(CLI::App& app) {
             meta.method = methodName(job.render.method);
             if (job.render.method == Method::Stochastic || job.render.method == Method::Accumulation)
                 meta.samples = job.render.samples;
-            if (const auto it = result.stats.counts.find("subframes"); it != result.stats.counts.end())
+            // Tiles plan their own counts; the header gives the largest (0 when nothing moved).
+            if (const auto it = result.stats.counts.find("subframes_max_per_tile"); it != result.stats.counts.end())
                 meta.subframes = static_cast<int>(it->second);
             meta.seed = job.render.seed;
             meta.config_hash = job.config_hash;
