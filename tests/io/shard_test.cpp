@@ -132,7 +132,9 @@ static void writeShard(const fs::path& path, int width, int height, const DataWi
 class ShardCheck : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("clipblur_shard_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+        // One folder per test: ctest runs the tests of this fixture in parallel processes.
+        dir = fs::temp_directory_path() /
+              (std::string("clipblur_shard_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir);
         fs::create_directories(dir);
     }

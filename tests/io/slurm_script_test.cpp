@@ -83,7 +83,9 @@ TEST(SlurmScript, DirectivePathWithSpaceIsRefused) {
 class SlurmScriptRun : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() / "clipblur_slurm_script_test";
+        // One folder per test: ctest runs the tests of this fixture in parallel processes.
+        dir = fs::temp_directory_path() /
+              (std::string("clipblur_slurm_script_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir);
         fs::create_directories(dir / "bin");
         plan = examplePlan(dir);
