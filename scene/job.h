@@ -38,6 +38,9 @@ struct RenderSettings {
     bool shadows = false;
     std::uint64_t seed = 0;
     int tile_size = 32;
+    // Check every resolved tile's fragments (inside the pixel, disjoint, covering exactly what the inputs
+    // cover, nearest surface kept) and fail the render on a violation. Slow; for tests and bug reports.
+    bool audit = false;
     // The pixels to compute; unset means the whole film. Not part of the job file (render --tile sets
     // it per shard), so every shard of a frame shares the job's config hash.
     std::optional<DataWindow> window;

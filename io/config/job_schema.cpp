@@ -293,6 +293,7 @@ void readRender(MapReader map, RenderSettings& r) {
     r.shadows = map.boolean("shadows", r.shadows);
     if (const ConfigNode* s = map.optional("seed")) r.seed = asUnsigned(*s, "render.seed");
     r.tile_size = map.integer("tile_size", r.tile_size, 1, kMaxTileSize);
+    r.audit = map.boolean("audit", r.audit);
     map.finish();
 }
 

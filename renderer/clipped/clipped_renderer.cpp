@@ -1,6 +1,7 @@
 #include "renderer/clipped/clipped_renderer.h"
 
 #include <atomic>
+#include <cstdio>
 #include <limits>
 #include <mutex>
 
@@ -77,6 +78,22 @@ std::vector<glm::vec2> fragmentMotion(const Scene& scene, const Projection& proj
     return motion;
 }
 
+// With render.audit set every resolved tile was checked by auditTile. A violation is a renderer bug, so
+// the render fails (no image is written) instead of returning a wrong picture.
+void reportAudit(RenderStats& stats, const AuditStats& audit) {
+    stats.counts["audit_pixels"] = audit.pixels;
+    stats.counts["audit_union_pixels"] = audit.union_pixels;
+    stats.counts["audit_union_skipped"] = audit.union_skipped;
+    stats.counts["audit_violations"] = audit.violations;
+    char worst[160];
+    std::snprintf(worst, sizeof worst, "outside %.3g px, overlap %.3g px^2, coverage %.3g px^2", audit.worst_outside,
+                  audit.worst_overlap, audit.worst_coverage);
+    stats.info["audit_worst"] = worst;
+    if (audit.violations > 0)
+        throw Error(ExitCode::Render, "fragment audit: " + std::to_string(audit.violations) +
+                                          " invariant violations; " + audit.first_violation);
+}
+
 }  // namespace
 
 RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
@@ -106,14 +123,15 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                                    settings.tile_size);
     stats.counts["guard_band_pixels"] = band;
     FrameFragmentStats open_stats, close_stats;
+    const FrameFragmentOptions frame_options{settings.visibility_rays, true, settings.audit};
     PixelSums still;
     still.resize(pixels);
     const std::vector<FragmentTriangle> open =
-        buildFrameFragments(scene, embree, adjacency, projection, visibility_grid, t0, shader, settings.visibility_rays,
-                            callbacks, true, &still, open_stats);
+        buildFrameFragments(scene, embree, adjacency, projection, visibility_grid, t0, shader, frame_options,
+                            callbacks, &still, open_stats);
     const std::vector<FragmentTriangle> close =
         both_frames ? buildFrameFragments(scene, embree, adjacency, projection, visibility_grid, t1, shader,
-                                          settings.visibility_rays, callbacks, true, nullptr, close_stats)
+                                          frame_options, callbacks, nullptr, close_stats)
                     : std::vector<FragmentTriangle>{};
     stats.seconds["visibility"] = secondsSince(stage);
 
@@ -170,7 +188,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
             const double t = times[static_cast<std::size_t>(k)];
             const MotionSnapshot snapshot(scene, projection, t);
             ReclipScratch scratch;
-            reclipSubframe(scene, shader, snapshot, (t - t0) / (t1 - t0), layers, refs, tile, scratch,
+            reclipSubframe(scene, shader, snapshot, (t - t0) / (t1 - t0), layers, refs, tile, settings.audit, scratch,
                            sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
         });
         for (int y = std::max(tile.y0, window.y0); y < std::min(tile.y1, window.y1()); ++y) {
@@ -203,6 +221,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                 reclip_totals.fragments += s.fragments;
                 reclip_totals.mixed += s.mixed;
                 reclip_totals.shaded_pieces += s.shaded_pieces;
+                reclip_totals.audit.merge(s.audit);
             }
             subframes_total += n;
             still_tiles += still_tile ? 1 : 0;
@@ -236,6 +255,12 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["triangles"] = embree.stats().triangles;
     recordFrameStats(stats, "open_", open_stats);
     if (both_frames) recordFrameStats(stats, "close_", close_stats);
+    if (settings.audit) {
+        AuditStats audit = open_stats.audit;
+        audit.merge(close_stats.audit);
+        audit.merge(reclip_totals.audit);
+        reportAudit(stats, audit);
+    }
     if (plan.capped_tiles > 0)
         stats.info["warning"] = std::to_string(plan.capped_tiles) + " tiles needed more than max_subframes (" +
                                 std::to_string(settings.max_subframes) + "); motion there may strobe";
@@ -264,8 +289,8 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     for (const double t : subframeTimes(t0, t1, n)) {
         PixelSums sums;
         sums.resize(pixels);
-        buildFrameFragments(scene, embree, adjacency, projection, grid, t, shader, settings.visibility_rays, callbacks,
-                            false, &sums, frame_stats);
+        buildFrameFragments(scene, embree, adjacency, projection, grid, t, shader,
+                            {settings.visibility_rays, false, settings.audit}, callbacks, &sums, frame_stats);
         for (std::size_t p = 0; p < pixels; ++p) {
             total.colour[p] += sums.colour[p];
             total.covered[p] += sums.covered[p];
@@ -289,6 +314,7 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     stats.counts["renders"] = n;
     stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
     recordFrameStats(stats, "all_", frame_stats);
+    if (settings.audit) reportAudit(stats, frame_stats.audit);
     stats.seconds["total"] = secondsSince(start);
     return result;
 }

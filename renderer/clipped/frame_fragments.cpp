@@ -66,8 +66,8 @@ struct TileOutput {
 std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const EmbreeScene& embree,
                                                   const MeshAdjacency& adjacency, const Projection& projection,
                                                   const TileGrid& grid, double time, const Shader& shader,
-                                                  int rays_per_side, const RenderCallbacks& callbacks,
-                                                  bool keep_triangles, PixelSums* still,
+                                                  const FrameFragmentOptions& options,
+                                                  const RenderCallbacks& callbacks, PixelSums* still,
                                                   FrameFragmentStats& stats) {
     const FrameGeometry frame(scene, projection, time, grid);
     const glm::dvec3 eye = frame.camera().position;
@@ -85,7 +85,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         TileOutput& out = outputs[static_cast<std::size_t>(index)];
         CandidateScratch candidate_scratch;
         std::vector<std::uint32_t> candidates;
-        findCandidates(frame, embree, adjacency, projection, tile, index, rays_per_side, candidate_scratch,
+        findCandidates(frame, embree, adjacency, projection, tile, index, options.rays_per_side, candidate_scratch,
                        candidates, out.stats.candidates);
         std::vector<ScreenTriangle> local;
         local.reserve(candidates.size());
@@ -96,6 +96,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         resolveTile(local, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch, fragments);
         out.stats.rejected_triangles += fragments.rejected_triangles;
         out.stats.dropped_area += fragments.dropped_area;
+        if (options.audit) auditTile(local, fragments, out.stats.audit);
 
         // Visible area of each candidate in the tile. A triangle whose visible area is all of its part
         // inside the tile is kept as that one polygon instead of one piece per pixel: same surface points,
@@ -149,7 +150,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
             }
         }
         out.stats.triangles = static_cast<long long>(out.triangles.size());
-        if (!keep_triangles) out.triangles.clear();
+        if (!options.keep_triangles) out.triangles.clear();
     });
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 
@@ -168,6 +169,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         stats.triangles += s.triangles;
         stats.rejected_triangles += s.rejected_triangles;
         stats.dropped_area += s.dropped_area;
+        stats.audit.merge(s.audit);
         for (std::size_t b = 0; b < s.fragments_per_pixel.size(); ++b)
             stats.fragments_per_pixel[b] += s.fragments_per_pixel[b];
     }

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/clipped/fragment_triangle.h"
+#include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/pixel_resolver.h"
 #include "renderer/render.h"
 #include "renderer/shading/shading.h"
@@ -34,6 +35,13 @@ struct FrameFragmentStats {
     long long rejected_triangles = 0;
     double dropped_area = 0.0;
     std::array<long long, 6> fragments_per_pixel{};  // pixels with 0, 1, 2, 3-4, 5-8, >8 fragments
+    AuditStats audit;                                 // filled when FrameFragmentOptions::audit is set
+};
+
+struct FrameFragmentOptions {
+    int rays_per_side = 2;       // Embree candidate rays per pixel side; 0: every binned triangle
+    bool keep_triangles = true;  // return the fragment triangles (false: only the still image)
+    bool audit = false;          // check every resolved tile's invariants (auditTile)
 };
 
 // Section 1 of the paper at one instant: Embree finds the candidate triangles per tile, the clipping
@@ -43,8 +51,8 @@ struct FrameFragmentStats {
 std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const EmbreeScene& embree,
                                                   const MeshAdjacency& adjacency, const Projection& projection,
                                                   const TileGrid& grid, double time, const Shader& shader,
-                                                  int rays_per_side, const RenderCallbacks& callbacks,
-                                                  bool keep_triangles, PixelSums* still,
+                                                  const FrameFragmentOptions& options,
+                                                  const RenderCallbacks& callbacks, PixelSums* still,
                                                   FrameFragmentStats& stats);
 
 }  // namespace clipblur

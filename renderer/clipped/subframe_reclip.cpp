@@ -56,7 +56,7 @@ void propagate(const Scene& scene, const MotionSnapshot& snapshot, const Fragmen
 
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
                     const FragmentLayers& layers, std::span<const FragmentRef> refs, const Tile& tile,
-                    ReclipScratch& scratch, TileSums& out, ReclipStats& stats) {
+                    bool audit, ReclipScratch& scratch, TileSums& out, ReclipStats& stats) {
     scratch.screen.clear();
     scratch.origin.clear();
     scratch.sources.clear();
@@ -65,6 +65,7 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
         propagate(scene, snapshot, (*layers.triangles[ref.layer])[ref.index], ref, weights[ref.layer], scratch, stats);
 
     resolveTile(scratch.screen, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch.tile, scratch.fragments);
+    if (audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
     const std::size_t pixels = static_cast<std::size_t>(tile.width()) * tile.height();
     out.reset(pixels);
     for (int y = tile.y0; y < tile.y1; ++y) {

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/clipped/fragment_triangle.h"
+#include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/fragment_tile.h"
 #include "renderer/propagation/surface_path.h"
 #include "renderer/shading/fragment_shading.h"
@@ -55,6 +56,7 @@ struct ReclipStats {
     long long fragments = 0;       // non-overlapping pieces after the re-clip
     long long mixed = 0;           // pieces where both frames' copies of a surface coincide
     long long shaded_pieces = 0;   // shading evaluations (after texture-cell cuts)
+    AuditStats audit;              // filled when reclipSubframe is asked to audit
 };
 
 // Sections 3.2-3.4 for one (tile, subframe): moves every referenced fragment triangle to the snapshot's
@@ -64,7 +66,7 @@ struct ReclipStats {
 // saw it, and reduces each pixel.
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
                     const FragmentLayers& layers,
-                    std::span<const FragmentRef> refs, const Tile& tile, ReclipScratch& scratch, TileSums& out,
-                    ReclipStats& stats);
+                    std::span<const FragmentRef> refs, const Tile& tile, bool audit, ReclipScratch& scratch,
+                    TileSums& out, ReclipStats& stats);
 
 }  // namespace clipblur

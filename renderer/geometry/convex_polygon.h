@@ -61,6 +61,10 @@ void clipByValues(const ConvexPolygon& p, const double* s, ConvexPolygon& inside
 // Keeps the part of p on the left of the directed line a->b (orient2d(a, b, x) >= 0).
 void clipByLine(const ConvexPolygon& p, const glm::dvec2& a, const glm::dvec2& b, ConvexPolygon& inside);
 
+// Whether edge e of q (v[e] -> v[e+1]) bounds q: false only for a very short edge that rounding has
+// turned into a small concavity (a neighbouring vertex strictly outside its line).
+bool supportingEdge(const ConvexPolygon& q, int e);
+
 // Splits p by the convex polygon q: appends the convex pieces of p \ q to outside (one per edge line of q
 // that cuts p) and writes p ∩ q to inside. Returns false if p lies entirely outside one edge line of q
 // (then inside is empty and p itself is appended to outside).

@@ -18,7 +18,7 @@ namespace {
 RenderJob smallMovingJob(const std::string& method) {
     return loadJob(std::string(CLIPBLUR_SOURCE_DIR) + "/configs/default.yaml",
                    {"film.width=67", "film.height=41", "render.method=" + method, "render.samples=3",
-                    "render.max_subframes=2"});
+                    "render.max_subframes=2", "render.audit=true"});
 }
 
 // Every channel of `part` equals the same pixels of `whole` bit for bit (memcmp, so NaN and the

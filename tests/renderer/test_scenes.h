@@ -22,6 +22,7 @@ inline RenderJob squareFilmJob(int size = 32) {
     job.scene.materials.push_back(white);
     job.render.method = Method::Stochastic;
     job.render.samples = 16;
+    job.render.audit = true;  // every test render checks its fragment invariants (fragment_audit.h)
     job.render.tile_size = 8;
     job.render.seed = 7;
     return job;

@@ -195,6 +195,10 @@ TEST(ClippedRenderer, BitIdenticalForOneAndTwoThreads) {
     }
     for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
         EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
+    // squareFilmJob turns the fragment audit on: every frame and subframe tile was checked.
+    EXPECT_GE(results[0].stats.counts.at("audit_pixels"), 3 * 32 * 32);
+    EXPECT_GT(results[0].stats.counts.at("audit_union_pixels"), 0);
+    EXPECT_EQ(results[0].stats.counts.at("audit_violations"), 0);
 }
 
 }  // namespace clipblur

@@ -55,7 +55,7 @@ class AgainstStochastic : public ::testing::TestWithParam<std::string> {};
 TEST_P(AgainstStochastic, DifferenceIsExplainedBySamplingNoise) {
     const std::string path = std::string(CLIPBLUR_SOURCE_DIR) + "/configs/" + GetParam();
     const std::vector<std::string> common{"film.width=64", "film.height=36", "render.tile_size=16", "lights=[]",
-                                          "ambient=1"};
+                                          "ambient=1", "render.audit=true"};
     auto load = [&](std::vector<std::string> extra) {
         extra.insert(extra.end(), common.begin(), common.end());
         if (GetParam() == "default.yaml") extra.push_back("objects.2.transform=[]");
@@ -108,7 +108,7 @@ objects:
     material: b
     primitive: {type: grid, size: [8, 8], divisions: [3, 3]}
     transform: [{time: 0, translate: [0, 0, 3], rotate: {axis: [1, 0, 0], angle_deg: -90}}]
-render: {method: clipped, tile_size: 16}
+render: {method: clipped, tile_size: 16, audit: true}
 )";
     RenderJob rays = loadJobFromText(text, "dense.yaml", {"render.visibility_rays=2"});
     RenderJob all = loadJobFromText(text, "dense.yaml", {"render.visibility_rays=0"});
