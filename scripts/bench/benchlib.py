@@ -62,6 +62,23 @@ def config_hash(clipblur, config, overrides):
     return m.group(1)
 
 
+# Each method's ladder parameter is the job key it varies.
+LADDER_KEY = {"clipped": "render.subframes", "stochastic": "render.samples", "accumulation": "render.samples"}
+
+
+def base_overrides(width, height):
+    """Film size, full-float RGBA output and no AOVs or preview: the images are only compared."""
+    return {"film.width": width, "film.height": height, "output.half": "false", "output.png_preview": "false",
+            "output.aovs": "[]"}
+
+
+def ladder_overrides(method, rung):
+    o = {"render.method": method, LADDER_KEY[method]: rung}
+    if method == "clipped" and rung != "auto":
+        o["render.max_subframes"] = max(256, int(rung))
+    return o
+
+
 def render(clipblur, config, overrides, image, threads=0):
     """Renders one frame; returns the stats JSON as a dict."""
     image = Path(image)

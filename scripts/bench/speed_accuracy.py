@@ -2,7 +2,8 @@
 """Speed-accuracy sweep: renders every bench scene with each method over a quality ladder, measures
 wall time (stats seconds.total) and error against a converged stochastic reference, and writes
 results.csv, one error-vs-time chart per scene (PNG and SVG) and summary.md with time-to-equal-error
-ratios.
+ratios: each baseline at clipped `auto`'s error, and clipped at the error stochastic reaches with 256
+samples per pixel (scripts/bench/equal_error.py measures the latter without a reference).
 
     scripts/bench/speed_accuracy.py                 # full sweep, 320x180, reference 4096 spp
     scripts/bench/speed_accuracy.py --quick         # about 2 minutes: 160x90, fewer scenes and rungs
@@ -28,8 +29,8 @@ FULL = {"width": 320, "height": 180, "reference_spp": 4096, "clipped": "1,2,4,8,
 QUICK = {"width": 96, "height": 54, "reference_spp": 1024, "clipped": "1,4,auto",
          "stochastic": "1,4,16,64,256", "accumulation": "1,4,16"}
 
-# Each method's ladder parameter is the job key it varies.
-LADDER_KEY = {"clipped": "render.subframes", "stochastic": "render.samples", "accumulation": "render.samples"}
+# Issue 5's yardstick: clipped is compared at the error stochastic reaches with this many samples.
+EQUAL_ERROR_SPP = 256
 
 CSV_FIELDS = ["scene", "method", "param", "seconds", "rmse", "max_abs", "mean_abs", "subframes_total",
               "subframes_max_per_tile", "rays", "fragments", "width", "height", "threads", "image"]
@@ -42,13 +43,6 @@ def parse_ladder(text):
         if item:
             rungs.append(item if item == "auto" else int(item))
     return rungs
-
-
-def ladder_overrides(method, rung):
-    o = {"render.method": method, LADDER_KEY[method]: rung}
-    if method == "clipped" and rung != "auto":
-        o["render.max_subframes"] = max(256, int(rung))
-    return o
 
 
 def row_from(scene, method, rung, stats, err, args, image):
@@ -93,6 +87,32 @@ def summarise(rows):
     return "\n".join(lines) + "\n"
 
 
+def summarise_equal_error(rows, spp=EQUAL_ERROR_SPP):
+    """Issue 5's comparison: the error stochastic reaches with `spp` samples per pixel, and the time
+    clipped needs for it, interpolated in log-log along every clipped rung (not only `auto`)."""
+    lines = [f"| scene | stochastic {spp} spp: time s | RMSE | clipped time at that RMSE | ratio |",
+             "|---|---|---|---|---|"]
+    scenes = sorted({r["scene"] for r in rows}, key=lambda s: ALL_SCENES.index(s) if s in ALL_SCENES else 99)
+    for scene in scenes:
+        mine = [r for r in rows if r["scene"] == scene]
+        target = [r for r in mine if r["method"] == "stochastic" and str(r["param"]) == str(spp)]
+        clipped = [(r["seconds"], r["rmse"]) for r in mine if r["method"] == "clipped"]
+        if not target or not clipped:
+            continue
+        s = target[0]
+        cells = [scene, f"{s['seconds']:.3f}", f"{s['rmse']:.4g}"]
+        t = benchlib.time_to_reach(clipped, s["rmse"])
+        if t is None:
+            best = min(e for _, e in clipped)
+            cells += [f"not reached (best RMSE {best:.4g})", "-"]
+        else:
+            cells += [f"{t:.3f}", f"{s['seconds'] / t:.3g}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    if len(lines) == 2:
+        return f"(no stochastic {spp} spp rung or no clipped rung: equal-error table left out)\n"
+    return "\n".join(lines) + "\n"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="small film, few scenes and rungs (~2 min)")
@@ -129,15 +149,14 @@ def main():
             if not config.is_file():
                 raise benchlib.BenchError(f"no bench scene {config}")
             print(f"{scene}:", flush=True)
-            base = {"film.width": args.width, "film.height": args.height, "output.half": "false",
-                    "output.png_preview": "false", "output.aovs": "[]"}
+            base = benchlib.base_overrides(args.width, args.height)
             ref = benchlib.reference_image(clipblur, config, base, args.reference_spp, args.cache, args.threads,
                                            args.refresh_reference)
             runs = [(m, r) for m in ("clipped", "stochastic", "accumulation") for r in ladders[m]]
             runs.append(("frame0_only", "-"))
             for method, rung in runs:
                 o = dict(base)
-                o.update(ladder_overrides(method, rung) if method != "frame0_only" else {"render.method": method})
+                o.update(benchlib.ladder_overrides(method, rung) if method != "frame0_only" else {"render.method": method})
                 image = out / "renders" / scene / f"{method}_{rung}.exr"
                 stats = benchlib.render(clipblur, config, o, image, args.threads)
                 err = benchlib.image_error(ref, image)
@@ -158,7 +177,8 @@ def main():
             w = csv.DictWriter(f, fieldnames=CSV_FIELDS)
             w.writeheader()
             w.writerows(rows)
-        summary = summarise(rows)
+        summary = (summarise(rows) + f"\nClipped at the error stochastic reaches with {EQUAL_ERROR_SPP} spp (ratio: "
+                   f"stochastic time / clipped time):\n\n" + summarise_equal_error(rows))
         meta = {"date": datetime.datetime.now().isoformat(timespec="seconds"), "git": benchlib.git_hash(),
                 "machine": benchlib.machine_description(), "argv": sys.argv[1:], "width": args.width,
                 "height": args.height, "reference_spp": args.reference_spp, "ladders": ladders}

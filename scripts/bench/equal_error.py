@@ -1,0 +1,313 @@
+#!/usr/bin/env python3
+"""Issue 5's benchmark: clipped against stochastic at equal error, measured in one run, with no
+converged reference. Per scene (default: the five Table 1 moves, the spinning propeller and the sweep
+disocclusion scene, at 1280x720):
+
+  1. stochastic at 256 spp twice, with seeds s1 and s2: the time, and e256, the error one such render
+     has against the exact image;
+  2. clipped on the subframe ladder 1, 2, 4, ... until its error is at most e256 (or --max-rung), and
+     `auto`: time, subframes, fragments per subframe, peak memory and the error e_c of each rung;
+  3. clipped's time at e256, interpolated in log-log along its ladder, and the ratio
+     (mean stochastic 256 spp time) / (that time); issue 5's goal is a ratio of at least 5;
+  4. with --threads-check on: the clipped rung that reaches e256 (or `auto`) and stochastic 256 spp
+     at 1 and at 2 threads; the speed-up t1 / t2 (goal for clipped: at least 1.8), and whether the two
+     images are bit-identical (they must be: random streams never depend on the thread count).
+
+    scripts/bench/equal_error.py                                   # all seven scenes at 1280x720
+    scripts/bench/equal_error.py --scenes table1_spin,sweep --width 160 --height 90 --threads-check off
+
+Writes results.csv (one row per render), summary.md and run.json under --out
+(build/bench/equal_error).
+
+The statistics. Errors are RMS over the R, G and B values of all pixels (oiiotool --diff with --ch
+R,G,B: the root of the mean squared difference over every channel of every pixel), as in
+speed_accuracy.py. Let I be the exact motion-blurred frame and i run over the N values of the image.
+
+  Stochastic: s_k = I + n_k (k = 1, 2), with E[n_k] = 0 (the estimator is unbiased), Var(n_k,i) =
+  sigma_i^2 for both seeds, and n_1, n_2 independent (different seeds give independent streams). The
+  error of one 256 spp render is E256^2 = E[mean_i (s_k,i - I_i)^2] = mean_i sigma_i^2.
+  With d = s1 - s2 = n_1 - n_2: E[d_i^2] = 2 sigma_i^2, so
+      e256^2 = mean(d^2) / 2 = rmse(s1, s2)^2 / 2
+  estimates E256^2 without bias, and needs no reference.
+
+  Clipped: c = I + b is deterministic (b its bias: subframe sampling, coverage), independent of n_k.
+  Against the mean of the two stochastic renders, sbar = I + (n_1 + n_2) / 2:
+      E[(c_i - sbar_i)^2] = b_i^2 - b_i E[n_1,i + n_2,i] + E[(n_1,i + n_2,i)^2] / 4 = b_i^2 + sigma_i^2 / 2,
+  so the error of clipped, e_c^2 = mean(b^2), is estimated without bias by
+      e_c^2 = mean((c - sbar)^2) - e256^2 / 2 = rmse(c, sbar)^2 - e256^2 / 2,
+  clamped at 0. Its noise: it is the mean of q_i = (c_i - sbar_i)^2 - d_i^2 / 4. Pixels are
+  independent (streams derive from seed, frame, pixel and sample), the channels of one pixel are not,
+  so the standard error is SE = std(q_p) / sqrt(P) over the P pixels, q_p the mean of q over a
+  pixel's R, G, B. An estimate below 2 SE cannot be told from 0: such a rung is marked "within noise"
+  and its error reported as the bound sqrt(max(e_c^2, 0) + 2 SE). The same holds for e256^2 with
+  q_p = mean over R, G, B of d^2 / 2; its relative SE is printed beside it.
+"""
+
+import argparse
+import csv
+import datetime
+import json
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import benchlib  # noqa: E402
+
+DEFAULT_SCENES = ["table1_spin", "table1_pan", "table1_spin_pan", "table1_recede", "table1_recede_spin_pan",
+                  "propeller", "sweep"]
+SPP = 256
+RATIO_GOAL = 5.0
+THREAD_GOAL = 1.8
+# Both seeds differ from benchlib.REFERENCE_SEED and from each other: independent sample streams.
+DEFAULT_SEEDS = (1001, 2002)
+
+CSV_FIELDS = ["scene", "role", "method", "param", "seed", "threads", "seconds", "subframes_total",
+              "subframes_max_per_tile", "reclip_fragments", "fragments_per_subframe", "peak_memory_mb",
+              "error", "error_se", "within_noise", "identical_across_threads", "width", "height", "image"]
+
+
+def rgb(path):
+    return [str(path), "--ch", "R,G,B"]
+
+
+def pixel_mean_stats(expression, scale):
+    """Mean and population standard deviation over pixels of the per-pixel mean of an RGB expression
+    (oiiotool stack arguments). --printstats prints six decimals, so the values are first scaled by
+    `scale` to be of order 1; the result is divided back."""
+    cmd = ["oiiotool", "--no-autopremult"] + expression + ["--chsum", "--mulc", repr(scale / 3.0), "--printstats"]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    out = r.stdout + r.stderr
+    avg = re.search(r"Stats Avg:\s*([-0-9.eE+naif]+)", out)
+    std = re.search(r"Stats StdDev:\s*([-0-9.eE+naif]+)", out)
+    if r.returncode != 0 or not avg or not std:
+        raise benchlib.BenchError(f"oiiotool --printstats failed: {' '.join(cmd)}\n{out.strip()}")
+    return float(avg.group(1)) / scale, float(std.group(1)) / scale
+
+
+class StochasticPair:
+    """The two 256 spp renders of one scene, their mean and the noise level e256."""
+
+    def __init__(self, s1, s2, sbar, pixels):
+        self.s1, self.s2, self.sbar, self.pixels = s1, s2, sbar, pixels
+        self.e256 = benchlib.image_error(s1, s2)["rmse"] / math.sqrt(2.0)
+        self.e256_sq_se = 0.0
+        if self.e256 > 0:
+            _, std = pixel_mean_stats(rgb(s1) + rgb(s2) + ["--sub", "--dup", "--mul", "--mulc", "0.5"],
+                                      1.0 / self.e256 ** 2)
+            self.e256_sq_se = std / math.sqrt(pixels)
+
+    def clipped_error(self, image):
+        """(e_c, SE of e_c^2, within_noise) for a deterministic render, as in the module docstring."""
+        raw = benchlib.image_error(self.sbar, image)["rmse"] ** 2 - self.e256 ** 2 / 2.0
+        scale = 1.0 / self.e256 ** 2 if self.e256 > 0 else 1.0
+        q = (rgb(image) + [str(self.sbar), "--sub", "--dup", "--mul"] + rgb(self.s1) + rgb(self.s2)
+             + ["--sub", "--dup", "--mul", "--mulc", "0.25", "--sub"])
+        _, std = pixel_mean_stats(q, scale)
+        se = std / math.sqrt(self.pixels)
+        if raw < 2.0 * se:
+            return math.sqrt(max(raw, 0.0) + 2.0 * se), se, True
+        return math.sqrt(raw), se, False
+
+
+def row(scene, role, method, param, seed, threads, stats, args, image, error="", error_se="", within_noise=""):
+    counts = stats.get("counts", {})
+    sub_total = counts.get("subframes_total", "")
+    fragments = counts.get("reclip_fragments", "")
+    per_subframe = fragments / sub_total if isinstance(sub_total, int) and sub_total > 0 and fragments != "" else ""
+    return {"scene": scene, "role": role, "method": method, "param": param, "seed": seed,
+            "threads": stats.get("threads", threads), "seconds": stats["seconds"]["total"],
+            "subframes_total": sub_total, "subframes_max_per_tile": counts.get("subframes_max_per_tile", ""),
+            "reclip_fragments": fragments, "fragments_per_subframe": per_subframe,
+            "peak_memory_mb": stats.get("peak_memory_bytes", 0) / 2 ** 20, "error": error, "error_se": error_se,
+            "within_noise": within_noise, "identical_across_threads": "", "width": args.width,
+            "height": args.height, "image": str(image)}
+
+
+def measure_scene(clipblur, scene, args, out, log=print):
+    """All renders of one scene; returns (rows, result) with result the figures of the summary."""
+    config = benchlib.REPO / "configs" / "bench" / f"{scene}.yaml"
+    if not config.is_file():
+        raise benchlib.BenchError(f"no bench scene {config}")
+    base = benchlib.base_overrides(args.width, args.height)
+    folder = out / "renders" / scene
+    rows = []
+
+    images = []
+    for k, seed in enumerate(args.seeds, 1):
+        o = dict(base, **benchlib.ladder_overrides("stochastic", SPP), **{"render.seed": seed})
+        image = folder / f"stochastic_{SPP}_seed{seed}.exr"
+        stats = benchlib.render(clipblur, config, o, image, args.threads)
+        rows.append(row(scene, f"stochastic_{k}", "stochastic", SPP, seed, args.threads, stats, args, image))
+        images.append(image)
+    sbar = folder / "stochastic_mean.exr"
+    r = subprocess.run(["oiiotool", "--no-autopremult"] + rgb(images[0]) + rgb(images[1])
+                       + ["--add", "--mulc", "0.5", "-d", "float", "-o", str(sbar)], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise benchlib.BenchError(f"oiiotool could not average {images}: {r.stderr.strip()}")
+    pair = StochasticPair(images[0], images[1], sbar, args.width * args.height)
+    for rw in rows:
+        rw["error"], rw["error_se"], rw["within_noise"] = pair.e256, pair.e256_sq_se, False
+    t_stochastic = sum(rw["seconds"] for rw in rows) / len(rows)
+    log(f"  stochastic {SPP} spp  {rows[0]['seconds']:.3f} s, {rows[1]['seconds']:.3f} s  "
+        f"e256 {pair.e256:.4g} (SE of e256^2 {pair.e256_sq_se / pair.e256 ** 2 if pair.e256 else 0:.1%})")
+
+    rungs = []
+    n = 1
+    while n <= args.max_rung:
+        rungs.append(n)
+        n *= 2
+    reaching = None
+    for rung in rungs + ["auto"]:
+        if rung != "auto" and reaching is not None:
+            continue
+        o = dict(base, **benchlib.ladder_overrides("clipped", rung))
+        image = folder / f"clipped_{rung}.exr"
+        stats = benchlib.render(clipblur, config, o, image, args.threads)
+        e, se, noise = pair.clipped_error(image)
+        rw = row(scene, "clipped", "clipped", rung, "", args.threads, stats, args, image, e, se, noise)
+        rows.append(rw)
+        log(f"  clipped {str(rung):>5s}  {rw['seconds']:8.3f} s  subframes {rw['subframes_total']} "
+            f"(max/tile {rw['subframes_max_per_tile']})  error {'<= ' if noise else ''}{e:.4g}")
+        if rung != "auto" and e <= pair.e256:
+            reaching = rung
+
+    clipped = [rw for rw in rows if rw["role"] == "clipped"]
+    t_clipped = benchlib.time_to_reach([(rw["seconds"], rw["error"]) for rw in clipped], pair.e256)
+    result = {"scene": scene, "t_stochastic": t_stochastic, "e256": pair.e256, "e256_sq_se": pair.e256_sq_se,
+              "t_clipped": t_clipped, "ratio": t_stochastic / t_clipped if t_clipped else None,
+              "reaching": reaching, "best_error": min(rw["error"] for rw in clipped),
+              "auto": next(rw for rw in clipped if rw["param"] == "auto")}
+
+    if args.threads_check == "on":
+        check_rung = reaching if reaching is not None else "auto"
+        for method, param, extra in (("clipped", check_rung, {}), ("stochastic", SPP, {"render.seed": args.seeds[0]})):
+            o = dict(base, **benchlib.ladder_overrides(method, param), **extra)
+            timed = {}
+            for threads in (1, 2):
+                image = folder / "threads" / f"{method}_{param}_t{threads}.exr"
+                stats = benchlib.render(clipblur, config, o, image, threads)
+                timed[threads] = row(scene, f"{method}_threads", method, param, extra.get("render.seed", ""),
+                                     threads, stats, args, image)
+            identical = benchlib.image_error(timed[1]["image"], timed[2]["image"])["max_abs"] == 0.0
+            for rw in timed.values():
+                rw["identical_across_threads"] = identical
+                rows.append(rw)
+            speedup = timed[1]["seconds"] / timed[2]["seconds"]
+            result[f"{method}_threads"] = {"param": param, "t1": timed[1]["seconds"], "t2": timed[2]["seconds"],
+                                           "speedup": speedup, "identical": identical}
+            log(f"  {method} {param} threads 1 -> 2: {timed[1]['seconds']:.3f} s -> {timed[2]['seconds']:.3f} s, "
+                f"speed-up {speedup:.2f}, images {'identical' if identical else 'DIFFER'}")
+    return rows, result
+
+
+def fmt(x, spec=".3f"):
+    return "-" if x is None or x == "" else format(x, spec)
+
+
+def summarise(results, rows):
+    lines = [f"| scene | stochastic {SPP} spp s (mean of 2) | e256 | clipped s at e256 | ratio (goal >= {RATIO_GOAL:g}) "
+             "| first rung <= e256 | auto: max subframes/tile | auto s | auto error |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in results:
+        a = r["auto"]
+        if r["t_clipped"] is None:
+            t_cell, ratio_cell = f"not reached (best error {r['best_error']:.4g})", "-"
+        else:
+            ok = "met" if r["ratio"] >= RATIO_GOAL else "not met"
+            t_cell, ratio_cell = f"{r['t_clipped']:.3f}", f"{r['ratio']:.3g} ({ok})"
+        rel = f" (SE of e256^2 {r['e256_sq_se'] / r['e256'] ** 2:.1%})" if r["e256"] > 0 else ""
+        lines.append(f"| {r['scene']} | {r['t_stochastic']:.3f} | {r['e256']:.4g}{rel} | {t_cell} | {ratio_cell} | "
+                     f"{fmt(r['reaching'], '')} | {a['subframes_max_per_tile']} | {a['seconds']:.3f} | "
+                     f"{'<= ' if a['within_noise'] else ''}{a['error']:.4g} |")
+    text = "\n".join(lines) + "\n"
+
+    if any("clipped_threads" in r for r in results):
+        lines = [f"| scene | clipped rung | 1 thread s | 2 threads s | speed-up (goal >= {THREAD_GOAL:g}) | "
+                 f"stochastic {SPP} spp 1 thread s | 2 threads s | speed-up | images identical (clipped, stochastic) |",
+                 "|---|---|---|---|---|---|---|---|---|"]
+        for r in results:
+            c, s = r.get("clipped_threads"), r.get("stochastic_threads")
+            if not c:
+                continue
+            ok = "met" if c["speedup"] >= THREAD_GOAL else "not met"
+            lines.append(f"| {r['scene']} | {c['param']} | {c['t1']:.3f} | {c['t2']:.3f} | {c['speedup']:.2f} ({ok}) | "
+                         f"{s['t1']:.3f} | {s['t2']:.3f} | {s['speedup']:.2f} | {c['identical']}, {s['identical']} |")
+        text += "\nThread scaling:\n\n" + "\n".join(lines) + "\n"
+
+    lines = ["| scene | method | param | s | subframes total | max/tile | fragments per subframe | peak MiB | error |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for rw in rows:
+        if rw["role"] not in ("stochastic_1", "stochastic_2", "clipped"):
+            continue
+        param = f"{rw['param']} (seed {rw['seed']})" if rw["method"] == "stochastic" else str(rw["param"])
+        err = ("e256 " if rw["method"] == "stochastic" else "<= " if rw["within_noise"] else "") + f"{rw['error']:.4g}"
+        lines.append(f"| {rw['scene']} | {rw['method']} | {param} | {rw['seconds']:.3f} | {fmt(rw['subframes_total'], '')} | "
+                     f"{fmt(rw['subframes_max_per_tile'], '')} | {fmt(rw['fragments_per_subframe'], '.4g')} | "
+                     f"{rw['peak_memory_mb']:.0f} | {err} |")
+    text += ("\nEvery render (fragments per subframe: reclip_fragments / subframes_total, i.e. per tile and "
+             "subframe; peak MiB: the render process's peak resident set; `<=`: within the noise, an upper "
+             "bound):\n\n" + "\n".join(lines) + "\n")
+    return text
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scenes", default=",".join(DEFAULT_SCENES), help="comma-separated scene names from configs/bench")
+    ap.add_argument("--width", type=int, default=1280)
+    ap.add_argument("--height", type=int, default=720)
+    ap.add_argument("--seeds", default=",".join(map(str, DEFAULT_SEEDS)), help="the two stochastic seeds, s1,s2")
+    ap.add_argument("--max-rung", type=int, default=1024, help="largest fixed subframe count of the clipped ladder")
+    ap.add_argument("--threads", type=int, default=0, help="render threads of the main runs (0: all cores)")
+    ap.add_argument("--threads-check", choices=("on", "off"), default="on",
+                    help="also time the rung reaching e256 and stochastic at 1 and 2 threads")
+    ap.add_argument("--out", default=str(benchlib.REPO / "build" / "bench" / "equal_error"))
+    ap.add_argument("--clipblur", help="path of the clipblur binary (default build/clipblur or $CLIPBLUR)")
+    args = ap.parse_args()
+    try:
+        args.seeds = [int(s) for s in args.seeds.split(",")]
+    except ValueError:
+        args.seeds = []
+    if len(args.seeds) != 2 or args.seeds[0] == args.seeds[1]:
+        ap.error("--seeds needs two different integers, e.g. 1001,2002")
+
+    try:
+        clipblur = benchlib.find_clipblur(args.clipblur)
+        benchlib.require_tool("oiiotool")
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        meta = {"date": datetime.datetime.now().isoformat(timespec="seconds"), "git": benchlib.git_hash(),
+                "machine": benchlib.machine_description(), "argv": sys.argv[1:], "clipblur": clipblur,
+                "width": args.width, "height": args.height, "spp": SPP, "seeds": args.seeds,
+                "max_rung": args.max_rung, "threads": args.threads}
+        rows, results = [], []
+        for scene in [s for s in args.scenes.split(",") if s]:
+            print(f"{scene}:", flush=True)
+            scene_rows, result = measure_scene(clipblur, scene, args, out,
+                                               log=lambda line: print(line, flush=True))
+            rows += scene_rows
+            results.append(result)
+            # Rewritten after every scene: a long 1280x720 run leaves its finished scenes behind.
+            with open(out / "results.csv", "w", newline="") as f:
+                w = csv.DictWriter(f, fieldnames=CSV_FIELDS)
+                w.writeheader()
+                w.writerows(rows)
+            summary = summarise(results, rows)
+            with open(out / "summary.md", "w") as f:
+                f.write(f"Equal-error benchmark, {meta['date']}, git {meta['git'][:12]}, {args.width}x{args.height}, "
+                        f"{meta['machine']['nproc']} x {meta['machine']['cpu_model']}\n\n{summary}")
+            with open(out / "run.json", "w") as f:
+                json.dump(dict(meta, results=[{k: v for k, v in r.items() if k != "auto"} for r in results]),
+                          f, indent=2, default=str)
+        print("\n" + summary)
+        print(f"wrote {out / 'results.csv'}, {out / 'summary.md'}, {out / 'run.json'}")
+    except benchlib.BenchError as e:
+        print(f"equal_error: {e}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
