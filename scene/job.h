@@ -32,6 +32,8 @@ struct RenderSettings {
     int samples = 16;          // stochastic: samples per pixel; accumulation: renders per frame
     int subframes = 0;         // clipped: 0 means automatic (paper eq. 24)
     int max_subframes = 256;
+    int segments = 0;          // clipped: shutter segments with their own fragment sets; 0 means auto
+    int max_segments = 16;
     PathMethod path_method = PathMethod::Exact;
     int ode_steps = 16;        // per subframe interval, Euler and RK4 only
     int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)

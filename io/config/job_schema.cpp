@@ -286,6 +286,13 @@ void readRender(MapReader map, RenderSettings& r) {
         else
             r.subframes = static_cast<int>(asInteger(*s, "render.subframes", 1, r.max_subframes));
     }
+    r.max_segments = map.integer("max_segments", r.max_segments, 1, kMaxSegments);
+    if (const ConfigNode* s = map.optional("segments")) {
+        if (s->isScalar() && s->scalar == "auto")
+            r.segments = 0;
+        else
+            r.segments = static_cast<int>(asInteger(*s, "render.segments", 1, r.max_segments));
+    }
     if (const ConfigNode* p = map.optional("path_method"))
         r.path_method = static_cast<PathMethod>(asChoice(*p, "render.path_method", {"exact", "euler", "rk4"}));
     r.ode_steps = map.integer("ode_steps", r.ode_steps, 1, kMaxOdeSteps);

@@ -15,6 +15,7 @@ inline constexpr int kMaxImageSide = 16384;
 inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
 inline constexpr int kMaxSamples = 1 << 16;
 inline constexpr int kMaxSubframes = 4096;
+inline constexpr int kMaxSegments = 256;
 inline constexpr int kMaxOdeSteps = 1 << 16;
 inline constexpr int kMaxVisibilityRays = 64;
 inline constexpr int kMaxTileSize = 1024;

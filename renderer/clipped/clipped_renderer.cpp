@@ -11,6 +11,7 @@
 #include "renderer/clipped/frame_fragments.h"
 #include "renderer/clipped/guard_band.h"
 #include "renderer/clipped/motion_plan.h"
+#include "renderer/clipped/shutter_segments.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
@@ -96,6 +97,166 @@ void reportAudit(RenderStats& stats, const AuditStats& audit) {
 
 }  // namespace
 
+namespace {
+
+// Per-pixel sums over the render window (window-local, row-major), before the background is added.
+struct WindowSums {
+    std::vector<glm::dvec3> colour;
+    std::vector<double> covered;
+    std::vector<double> depth;
+    std::vector<glm::dvec2> motion;
+
+    explicit WindowSums(std::size_t pixels) : colour(pixels), covered(pixels), depth(pixels), motion(pixels) {}
+};
+
+// What every shutter segment shares: the scene, its Embree and shading state and the output layout.
+struct ClippedContext {
+    const RenderJob& job;
+    const EmbreeScene& embree;
+    const Shader& shader;
+    const MeshAdjacency& adjacency;
+    Projection projection;
+    TileGrid grid;
+    DataWindow window;
+    double t0, t1;  // the whole shutter
+    const RenderCallbacks& callbacks;
+};
+
+struct SegmentTotals {
+    FrameFragmentStats open, close;
+    ReclipStats reclip;
+    long long subframes_total = 0, still_tiles = 0, capped_tiles = 0, measured = 0, near_crossings = 0;
+    int max_tile_subframes = 0;
+    int band = 0;
+};
+
+// The paper's method over one shutter segment [ts, te]: fragment sets at both ends, per-tile subframes,
+// propagation, re-clip and shading; adds weight x (the segment's average) to `sums`. `subframes` > 0
+// fixes this segment's count.
+void renderSegment(const ClippedContext& ctx, double ts, double te, int subframes, double weight, int segment,
+                   int segments, WindowSums& sums, SegmentTotals& totals) {
+    const Scene& scene = ctx.job.scene;
+    const RenderSettings& settings = ctx.job.render;
+    const bool both_frames = settings.method != Method::Frame0Only;
+
+    // 1. Clipped, shaded fragment sets at the segment's ends, over the image and a guard band wide
+    // enough that everything seen during the segment is in one of them.
+    const int band =
+        guardBandPixels(scene, ctx.projection, ts, te, std::max(scene.film.width, scene.film.height) / 2);
+    totals.band = std::max(totals.band, band);
+    const TileGrid visibility_grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band,
+                                   settings.tile_size);
+    const FrameFragmentOptions options{settings.visibility_rays, true, settings.audit};
+    PixelSums still;
+    still.resize(static_cast<std::size_t>(scene.film.width) * scene.film.height);
+    FrameFragmentStats open_stats, close_stats;
+    const std::vector<FragmentTriangle> open = buildFrameFragments(
+        scene, ctx.embree, ctx.adjacency, ctx.projection, visibility_grid, ts, ctx.shader, options, ctx.callbacks,
+        &still, open_stats);
+    const std::vector<FragmentTriangle> close =
+        both_frames ? buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, visibility_grid, te,
+                                          ctx.shader, options, ctx.callbacks, nullptr, close_stats)
+                    : std::vector<FragmentTriangle>{};
+    totals.open.merge(open_stats);
+    totals.close.merge(close_stats);
+
+    // 2. Subframes per tile from the fragments' image-plane speeds (eq. 24, corrected).
+    FragmentLayers layers;
+    layers.triangles = {&open, both_frames ? &close : nullptr};
+    layers.time = {ts, te};
+    layers.eye = {evalCamera(scene.camera, ts).position, evalCamera(scene.camera, te).position};
+    if (ctx.job.output.aov_motion) {  // motion vectors span the whole shutter
+        layers.motion[0] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, open);
+        if (both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, close);
+    }
+    const MotionPlan plan =
+        planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes, settings.max_subframes);
+    totals.capped_tiles += plan.capped_tiles;
+    totals.measured += plan.measured;
+    totals.near_crossings += plan.near_crossings;
+
+    // 3-5. Per tile and subframe: propagate, re-clip, reduce; tiles accumulate their subframes in order.
+    // Visibility and the subframe plan above stay global so a window's pixels are bit-identical to the
+    // same pixels of the whole film; only the tiles the window touches are resolved.
+    std::atomic<bool> cancelled{false};
+    std::atomic<long long> tiles_done{0};
+    std::mutex merge_mutex;
+    const long long progress_total = static_cast<long long>(ctx.grid.count()) * segments;
+    const auto progress = [&] {
+        const long long done = ++tiles_done + static_cast<long long>(segment) * ctx.grid.count();
+        if (ctx.callbacks.progress) {
+            std::lock_guard lock(merge_mutex);
+            ctx.callbacks.progress(done, progress_total);
+        }
+    };
+    const DataWindow& window = ctx.window;
+    tbb::parallel_for(0, ctx.grid.count(), [&](int index) {
+        if (ctx.callbacks.cancel && ctx.callbacks.cancel->load(std::memory_order_relaxed)) {
+            cancelled = true;
+            return;
+        }
+        const Tile tile = ctx.grid.tile(index);
+        if (!window.overlaps(tile.x0, tile.y0, tile.x1, tile.y1)) {
+            progress();
+            return;
+        }
+        const SubframePlan& tile_plan = plan.tiles[static_cast<std::size_t>(index)];
+        const auto& refs = plan.refs[static_cast<std::size_t>(index)];
+        // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
+        // lighting between the frames) the segment-start image is the answer.
+        const bool still_tile = tile_plan.max_sweep_pixels == 0.0 && subframes == 0 && !settings.shadows;
+        const int n = still_tile ? 0 : tile_plan.count;
+        std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
+        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
+        const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
+        tbb::parallel_for(0, n, [&](int k) {
+            const double t = times[static_cast<std::size_t>(k)];
+            const MotionSnapshot snapshot(scene, ctx.projection, t);
+            ReclipScratch scratch;
+            reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile, settings.audit,
+                           scratch, tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
+        });
+        for (int y = std::max(tile.y0, window.y0); y < std::min(tile.y1, window.y1()); ++y) {
+            for (int x = std::max(tile.x0, window.x0); x < std::min(tile.x1, window.x1()); ++x) {
+                const std::size_t out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
+                if (still_tile) {
+                    const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
+                    sums.colour[out] += weight * still.colour[pixel];
+                    sums.covered[out] += weight * still.covered[pixel];
+                    sums.depth[out] += weight * still.depth[pixel];
+                    continue;
+                }
+                const std::size_t i = static_cast<std::size_t>(y - tile.y0) * tile.width() + (x - tile.x0);
+                glm::dvec3 colour(0.0);
+                double covered = 0.0, depth = 0.0;
+                glm::dvec2 motion(0.0);
+                for (const TileSums& s : tile_sums) {  // fixed order: bit-identical for any thread count
+                    colour += s.colour[i];
+                    covered += s.covered[i];
+                    depth += s.depth[i];
+                    motion += s.motion[i];
+                }
+                const double w = weight / n;
+                sums.colour[out] += colour * w;
+                sums.covered[out] += covered * w;
+                sums.depth[out] += depth * w;
+                sums.motion[out] += motion * w;
+            }
+        }
+        {
+            std::lock_guard lock(merge_mutex);
+            for (const ReclipStats& s : sub_stats) totals.reclip.merge(s);
+            totals.subframes_total += n;
+            totals.still_tiles += still_tile ? 1 : 0;
+            totals.max_tile_subframes = std::max(totals.max_tile_subframes, n);
+        }
+        progress();
+    });
+    if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
+}
+
+}  // namespace
+
 RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     const auto start = Clock::now();
     const Scene& scene = job.scene;
@@ -103,166 +264,78 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const bool both_frames = settings.method != Method::Frame0Only;
     const double t0 = frame + job.shutter.open;
     const double t1 = frame + job.shutter.close;
-    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const TileGrid grid(scene.film.width, scene.film.height, settings.tile_size);
-    const std::size_t pixels = static_cast<std::size_t>(scene.film.width) * scene.film.height;
 
     EmbreeDevice device;
     const EmbreeScene embree(device, scene, t0, t1);
     const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
     const MeshAdjacency adjacency(scene);
+    const ClippedContext ctx{job,
+                             embree,
+                             shader,
+                             adjacency,
+                             Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees),
+                             TileGrid(scene.film.width, scene.film.height, settings.tile_size),
+                             renderWindow(job),
+                             t0,
+                             t1,
+                             callbacks};
     RenderResult result;
     RenderStats& stats = result.stats;
     stats.seconds["scene_build"] = secondsSince(start);
 
-    // 1. Clipped, shaded fragment sets at shutter open and close, over the image and a guard band wide
-    // enough that everything seen during the shutter is in one of them.
-    auto stage = Clock::now();
-    const int band = guardBandPixels(scene, projection, t0, t1, std::max(scene.film.width, scene.film.height) / 2);
-    const TileGrid visibility_grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band,
-                                   settings.tile_size);
-    stats.counts["guard_band_pixels"] = band;
-    FrameFragmentStats open_stats, close_stats;
-    const FrameFragmentOptions frame_options{settings.visibility_rays, true, settings.audit};
-    PixelSums still;
-    still.resize(pixels);
-    const std::vector<FragmentTriangle> open =
-        buildFrameFragments(scene, embree, adjacency, projection, visibility_grid, t0, shader, frame_options,
-                            callbacks, &still, open_stats);
-    const std::vector<FragmentTriangle> close =
-        both_frames ? buildFrameFragments(scene, embree, adjacency, projection, visibility_grid, t1, shader,
-                                          frame_options, callbacks, nullptr, close_stats)
-                    : std::vector<FragmentTriangle>{};
-    stats.seconds["visibility"] = secondsSince(stage);
-
-    // 2. Subframes per tile from the fragments' image-plane speeds (eq. 24, corrected).
-    stage = Clock::now();
-    FragmentLayers layers;
-    layers.triangles = {&open, both_frames ? &close : nullptr};
-    layers.time = {t0, t1};
-    layers.eye = {evalCamera(scene.camera, t0).position, evalCamera(scene.camera, t1).position};
-    if (job.output.aov_motion) {
-        layers.motion[0] = fragmentMotion(scene, projection, t0, t1, open);
-        if (both_frames) layers.motion[1] = fragmentMotion(scene, projection, t0, t1, close);
+    // Shutter segments (one unless something turns far), each rendered by the paper's method and weighted
+    // by its length. A fixed subframe count is shared out so the shutter has that many in total.
+    const auto stage = Clock::now();
+    const int segments = both_frames ? shutterSegments(scene, t0, t1, settings.segments, settings.max_segments) : 1;
+    WindowSums sums(static_cast<std::size_t>(ctx.window.width) * ctx.window.height);
+    SegmentTotals totals;
+    for (int s = 0; s < segments; ++s) {
+        const int fixed = settings.subframes > 0
+                              ? std::max(1, settings.subframes * (s + 1) / segments - settings.subframes * s / segments)
+                              : 0;
+        renderSegment(ctx, t0 + (t1 - t0) * s / segments, t0 + (t1 - t0) * (s + 1) / segments, fixed,
+                      1.0 / segments, s, segments, sums, totals);
     }
-    const MotionPlan plan = planMotion(scene, projection, grid, t0, t1, layers, settings.subframes, settings.max_subframes);
-    stats.seconds["subframe_plan"] = secondsSince(stage);
+    stats.seconds["segments"] = secondsSince(stage);
 
-    // 3-5. Per tile and subframe: propagate, re-clip, reduce; tiles accumulate their subframes in order.
-    stage = Clock::now();
-    // Visibility and the subframe plan above stay global so a window's pixels are bit-identical to the
-    // same pixels of the whole film; only the tiles the window touches are resolved.
-    const DataWindow window = renderWindow(job);
-    result.image = Image::make(scene.film.width, scene.film.height, window, outputChannels(job.output));
+    result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(job.output));
     ImageWriter writer(result.image, scene.film.background);
-    std::atomic<bool> cancelled{false};
-    std::atomic<long long> tiles_done{0};
-    std::mutex merge_mutex;
-    ReclipStats reclip_totals;
-    long long subframes_total = 0, still_tiles = 0;
-    int max_tile_subframes = 0;
-    tbb::parallel_for(0, grid.count(), [&](int index) {
-        if (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed)) {
-            cancelled = true;
-            return;
+    for (int y = ctx.window.y0; y < ctx.window.y1(); ++y) {
+        for (int x = ctx.window.x0; x < ctx.window.x1(); ++x) {
+            const std::size_t i = static_cast<std::size_t>(y - ctx.window.y0) * ctx.window.width + (x - ctx.window.x0);
+            writer.write(result.image.index(x, y), sums.colour[i], sums.covered[i], sums.depth[i], sums.motion[i]);
         }
-        const Tile tile = grid.tile(index);
-        if (!window.overlaps(tile.x0, tile.y0, tile.x1, tile.y1)) {
-            const long long done = ++tiles_done;
-            if (callbacks.progress) {
-                std::lock_guard lock(merge_mutex);
-                callbacks.progress(done, grid.count());
-            }
-            return;
-        }
-        const SubframePlan& tile_plan = plan.tiles[static_cast<std::size_t>(index)];
-        const auto& refs = plan.refs[static_cast<std::size_t>(index)];
-        // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
-        // lighting between the frames) the shutter-open image is the answer.
-        const bool still_tile = tile_plan.max_sweep_pixels == 0.0 && settings.subframes == 0 && !settings.shadows;
-        const int n = still_tile ? 0 : tile_plan.count;
-        std::vector<TileSums> sums(static_cast<std::size_t>(n));
-        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
-        const std::vector<double> times = subframeTimes(t0, t1, std::max(n, 1));
-        tbb::parallel_for(0, n, [&](int k) {
-            const double t = times[static_cast<std::size_t>(k)];
-            const MotionSnapshot snapshot(scene, projection, t);
-            ReclipScratch scratch;
-            reclipSubframe(scene, shader, snapshot, (t - t0) / (t1 - t0), layers, refs, tile, settings.audit, scratch,
-                           sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
-        });
-        for (int y = std::max(tile.y0, window.y0); y < std::min(tile.y1, window.y1()); ++y) {
-            for (int x = std::max(tile.x0, window.x0); x < std::min(tile.x1, window.x1()); ++x) {
-                const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
-                const std::size_t out = result.image.index(x, y);
-                if (still_tile) {
-                    writer.write(out, still.colour[pixel], still.covered[pixel], still.depth[pixel], glm::dvec2(0.0));
-                    continue;
-                }
-                const std::size_t i = static_cast<std::size_t>(y - tile.y0) * tile.width() + (x - tile.x0);
-                glm::dvec3 colour(0.0);
-                double covered = 0.0, depth = 0.0;
-                glm::dvec2 motion(0.0);
-                for (const TileSums& s : sums) {  // fixed order: bit-identical for any thread count
-                    colour += s.colour[i];
-                    covered += s.covered[i];
-                    depth += s.depth[i];
-                    motion += s.motion[i];
-                }
-                const double w = 1.0 / n;
-                writer.write(out, colour * w, covered * w, depth * w, motion * w);
-            }
-        }
-        {
-            std::lock_guard lock(merge_mutex);
-            for (const ReclipStats& s : sub_stats) {
-                reclip_totals.propagated += s.propagated;
-                reclip_totals.near_clipped += s.near_clipped;
-                reclip_totals.fragments += s.fragments;
-                reclip_totals.mixed += s.mixed;
-                reclip_totals.shaded_pieces += s.shaded_pieces;
-                reclip_totals.audit.merge(s.audit);
-            }
-            subframes_total += n;
-            still_tiles += still_tile ? 1 : 0;
-            max_tile_subframes = std::max(max_tile_subframes, n);
-        }
-        const long long done = ++tiles_done;
-        if (callbacks.progress) {
-            std::lock_guard lock(merge_mutex);
-            callbacks.progress(done, grid.count());
-        }
-    });
-    if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
-    stats.seconds["subframes"] = secondsSince(stage);
+    }
     stats.seconds["total"] = secondsSince(start);
 
     stats.info["method"] = both_frames ? "clipped" : "frame0_only";
     stats.counts["frame"] = frame;
     stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
-    stats.counts["tiles"] = grid.count();
-    stats.counts["still_tiles"] = still_tiles;
-    stats.counts["subframes_total"] = subframes_total;
-    stats.counts["subframes_max_per_tile"] = max_tile_subframes;
-    stats.counts["capped_tiles"] = plan.capped_tiles;
-    stats.counts["measured_fragment_paths"] = plan.measured;
-    stats.counts["near_crossing_fragments"] = plan.near_crossings;
-    stats.counts["propagated_triangles"] = reclip_totals.propagated;
-    stats.counts["reclip_near_clipped"] = reclip_totals.near_clipped;
-    stats.counts["reclip_fragments"] = reclip_totals.fragments;
-    stats.counts["reclip_mixed_fragments"] = reclip_totals.mixed;
-    stats.counts["reclip_shaded_pieces"] = reclip_totals.shaded_pieces;
+    stats.counts["tiles"] = ctx.grid.count();
+    stats.counts["segments"] = segments;
+    stats.counts["guard_band_pixels"] = totals.band;
+    stats.counts["still_tiles"] = totals.still_tiles;
+    stats.counts["subframes_total"] = totals.subframes_total;
+    stats.counts["subframes_max_per_tile"] = totals.max_tile_subframes;
+    stats.counts["capped_tiles"] = totals.capped_tiles;
+    stats.counts["measured_fragment_paths"] = totals.measured;
+    stats.counts["near_crossing_fragments"] = totals.near_crossings;
+    stats.counts["propagated_triangles"] = totals.reclip.propagated;
+    stats.counts["reclip_near_clipped"] = totals.reclip.near_clipped;
+    stats.counts["reclip_fragments"] = totals.reclip.fragments;
+    stats.counts["reclip_mixed_fragments"] = totals.reclip.mixed;
+    stats.counts["reclip_shaded_pieces"] = totals.reclip.shaded_pieces;
     stats.counts["triangles"] = embree.stats().triangles;
-    recordFrameStats(stats, "open_", open_stats);
-    if (both_frames) recordFrameStats(stats, "close_", close_stats);
+    recordFrameStats(stats, "open_", totals.open);
+    if (both_frames) recordFrameStats(stats, "close_", totals.close);
     if (settings.audit) {
-        AuditStats audit = open_stats.audit;
-        audit.merge(close_stats.audit);
-        audit.merge(reclip_totals.audit);
+        AuditStats audit = totals.open.audit;
+        audit.merge(totals.close.audit);
+        audit.merge(totals.reclip.audit);
         reportAudit(stats, audit);
     }
-    if (plan.capped_tiles > 0)
-        stats.info["warning"] = std::to_string(plan.capped_tiles) + " tiles needed more than max_subframes (" +
+    if (totals.capped_tiles > 0)
+        stats.info["warning"] = std::to_string(totals.capped_tiles) + " tiles needed more than max_subframes (" +
                                 std::to_string(settings.max_subframes) + "); motion there may strobe";
     return result;
 }

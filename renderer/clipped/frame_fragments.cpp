@@ -63,6 +63,22 @@ struct TileOutput {
 
 }  // namespace
 
+void FrameFragmentStats::merge(const FrameFragmentStats& s) {
+    candidates.rays += s.candidates.rays;
+    candidates.hit_triangles += s.candidates.hit_triangles;
+    candidates.candidates += s.candidates.candidates;
+    candidates.binned += s.candidates.binned;
+    fragments += s.fragments;
+    shaded_pieces += s.shaded_pieces;
+    merged_triangles += s.merged_triangles;
+    triangles += s.triangles;
+    near_clipped += s.near_clipped;
+    rejected_triangles += s.rejected_triangles;
+    dropped_area += s.dropped_area;
+    for (std::size_t b = 0; b < s.fragments_per_pixel.size(); ++b) fragments_per_pixel[b] += s.fragments_per_pixel[b];
+    audit.merge(s.audit);
+}
+
 std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const EmbreeScene& embree,
                                                   const MeshAdjacency& adjacency, const Projection& projection,
                                                   const TileGrid& grid, double time, const Shader& shader,
@@ -158,20 +174,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
     stats.near_clipped += frame.clippedByNearPlane();
     for (TileOutput& out : outputs) {
         all.insert(all.end(), out.triangles.begin(), out.triangles.end());
-        const FrameFragmentStats& s = out.stats;
-        stats.candidates.rays += s.candidates.rays;
-        stats.candidates.hit_triangles += s.candidates.hit_triangles;
-        stats.candidates.candidates += s.candidates.candidates;
-        stats.candidates.binned += s.candidates.binned;
-        stats.fragments += s.fragments;
-        stats.shaded_pieces += s.shaded_pieces;
-        stats.merged_triangles += s.merged_triangles;
-        stats.triangles += s.triangles;
-        stats.rejected_triangles += s.rejected_triangles;
-        stats.dropped_area += s.dropped_area;
-        stats.audit.merge(s.audit);
-        for (std::size_t b = 0; b < s.fragments_per_pixel.size(); ++b)
-            stats.fragments_per_pixel[b] += s.fragments_per_pixel[b];
+        stats.merge(out.stats);
     }
     return all;
 }

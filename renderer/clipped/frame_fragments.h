@@ -36,6 +36,8 @@ struct FrameFragmentStats {
     double dropped_area = 0.0;
     std::array<long long, 6> fragments_per_pixel{};  // pixels with 0, 1, 2, 3-4, 5-8, >8 fragments
     AuditStats audit;                                 // filled when FrameFragmentOptions::audit is set
+
+    void merge(const FrameFragmentStats& other);
 };
 
 struct FrameFragmentOptions {

@@ -57,6 +57,15 @@ struct ReclipStats {
     long long mixed = 0;           // pieces where both frames' copies of a surface coincide
     long long shaded_pieces = 0;   // shading evaluations (after texture-cell cuts)
     AuditStats audit;              // filled when reclipSubframe is asked to audit
+
+    void merge(const ReclipStats& other) {
+        propagated += other.propagated;
+        near_clipped += other.near_clipped;
+        fragments += other.fragments;
+        mixed += other.mixed;
+        shaded_pieces += other.shaded_pieces;
+        audit.merge(other.audit);
+    }
 };
 
 // Sections 3.2-3.4 for one (tile, subframe): moves every referenced fragment triangle to the snapshot's

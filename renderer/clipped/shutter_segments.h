@@ -1,0 +1,20 @@
+#pragma once
+
+#include "scene/scene.h"
+
+namespace clipblur {
+
+// Largest rotation (radians) that the camera or any object turns through during [t0, t1], summed along
+// the motion (sampled finely enough that no key interval turns by more than pi between samples).
+double largestTurn(const Scene& scene, double t0, double t1);
+
+// The paper builds fragment sets only at shutter open and close, so a surface hidden at both ends but
+// seen in between (the wall behind a propeller whose blades return to the same places, the side of the
+// world a camera turning 90 degrees sweeps past) is missing from both. Splitting the shutter into
+// segments, each with its own fragment sets at its ends, bounds how far anything turns between two
+// sets. `requested` > 0 is used as given; 0 (auto) gives one segment per kAutoSegmentTurnDegrees of the largest
+// turn, at most max_segments; a shutter with no rotation is one segment, the paper's method.
+inline constexpr double kAutoSegmentTurnDegrees = 15.0;
+int shutterSegments(const Scene& scene, double t0, double t1, int requested, int max_segments);
+
+}  // namespace clipblur
