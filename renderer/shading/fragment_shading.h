@@ -11,10 +11,9 @@
 
 namespace clipblur {
 
-// A piece of a fragment with one colour, its vertices' barycentrics on the mesh triangle.
+// A piece of a fragment with one colour.
 struct ShadedPiece {
     ConvexPolygon polygon;  // raster space
-    std::array<glm::dvec3, kMaxPolygonVertices> bary{};
     glm::dvec3 colour{0.0};
     double area = 0.0;
 };
