@@ -53,11 +53,6 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
         }
     }
     job.warnings = validateScene(job.scene, desc.locations);
-    // The paper's ODE is verified and available to `clipblur paths`; the renderer propagates every
-    // fragment vertex along its exact path, so the key must not look as if it changed a render.
-    if (job.render.path_method != PathMethod::Exact)
-        job.warnings.push_back(job.source_file + ": render.path_method euler/rk4 is used by `clipblur paths` only; "
-                               "renders propagate along the exact path");
     return job;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -165,6 +166,12 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     layers.triangles = {&open, both_frames ? &close : nullptr};
     layers.time = {ts, te};
     layers.eye = {evalCamera(scene.camera, ts).position, evalCamera(scene.camera, te).position};
+    std::optional<OdePropagator> ode;
+    if (settings.path_method != PathMethod::Exact) {
+        ode.emplace(scene, ctx.projection, ts, te,
+                    settings.path_method == PathMethod::Euler ? OdeMethod::Euler : OdeMethod::Rk4, settings.ode_steps);
+        layers.ode = &*ode;
+    }
     if (ctx.job.output.aov_motion) {  // motion vectors span the whole shutter
         layers.motion[0] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, open);
         if (both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, close);
@@ -325,6 +332,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["reclip_fragments"] = totals.reclip.fragments;
     stats.counts["reclip_mixed_fragments"] = totals.reclip.mixed;
     stats.counts["reclip_shaded_pieces"] = totals.reclip.shaded_pieces;
+    if (settings.path_method != PathMethod::Exact) stats.counts["ode_fallbacks"] = totals.reclip.ode_fallbacks;
     stats.counts["triangles"] = embree.stats().triangles;
     recordFrameStats(stats, "open_", totals.open);
     if (both_frames) recordFrameStats(stats, "close_", totals.close);

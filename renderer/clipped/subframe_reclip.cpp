@@ -31,14 +31,25 @@ void addScreenTriangle(const MotionSnapshot& snapshot, const std::array<glm::dve
 
 // Moves one fragment triangle to the snapshot's time; pieces behind the camera plane are cut off in 3D,
 // where barycentrics interpolate linearly, so the kept part still knows its surface points.
-void propagate(const Scene& scene, const MotionSnapshot& snapshot, const FragmentTriangle& t, FragmentRef ref,
-               float weight, ReclipScratch& scratch, ReclipStats& stats) {
+void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdePropagator* ode,
+               const FragmentTriangle& t, FragmentRef ref, float weight, ReclipScratch& scratch, ReclipStats& stats) {
     std::array<glm::dvec3, 3> world;
     bool behind = false;
     for (int i = 0; i < 3; ++i) {
-        const ProjectedPoint p = project(snapshot, scene, MeshPoint{t.object, t.triangle, t.bary[i]});
-        world[i] = p.world;
-        behind = behind || p.behind || p.depth < kNearDepth;
+        const MeshPoint point{t.object, t.triangle, t.bary[i]};
+        std::optional<glm::dvec3> moved;
+        if (ode) {
+            moved = ode->propagate(point, ref.layer, snapshot.time);
+            if (!moved) ++stats.ode_fallbacks;
+        }
+        if (moved) {
+            world[i] = *moved;
+            behind = behind || glm::dot(snapshot.camera.e3, world[i] - snapshot.camera.position) < kNearDepth;
+        } else {
+            const ProjectedPoint p = project(snapshot, scene, point);
+            world[i] = p.world;
+            behind = behind || p.behind || p.depth < kNearDepth;
+        }
     }
     ++stats.propagated;
     if (!behind) {
@@ -62,7 +73,8 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
     scratch.sources.clear();
     const std::array<float, 2> weights{static_cast<float>(1.0 - f), static_cast<float>(f)};
     for (const FragmentRef ref : refs)
-        propagate(scene, snapshot, (*layers.triangles[ref.layer])[ref.index], ref, weights[ref.layer], scratch, stats);
+        propagate(scene, snapshot, layers.ode, (*layers.triangles[ref.layer])[ref.index], ref, weights[ref.layer],
+                  scratch, stats);
 
     resolveTile(scratch.screen, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch.tile, scratch.fragments);
     if (audit) auditTile(scratch.screen, scratch.fragments, stats.audit);

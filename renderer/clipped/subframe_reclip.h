@@ -9,6 +9,7 @@
 #include "renderer/clipped/fragment_triangle.h"
 #include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/fragment_tile.h"
+#include "renderer/propagation/ode_propagation.h"
 #include "renderer/propagation/surface_path.h"
 #include "renderer/shading/fragment_shading.h"
 #include "renderer/shading/shading.h"
@@ -29,6 +30,7 @@ struct FragmentLayers {
     std::array<double, 2> time{};
     std::array<glm::dvec3, 2> eye{};
     std::array<std::vector<glm::vec2>, 2> motion;
+    const OdePropagator* ode = nullptr;  // render.path_method euler/rk4: the paper's ODE, else exact paths
 };
 
 // One subframe's pixel values over a tile (tile-local, row-major), before the background is added.
@@ -56,6 +58,7 @@ struct ReclipStats {
     long long fragments = 0;       // non-overlapping pieces after the re-clip
     long long mixed = 0;           // pieces where both frames' copies of a surface coincide
     long long shaded_pieces = 0;   // shading evaluations (after texture-cell cuts)
+    long long ode_fallbacks = 0;   // vertices the ODE could not carry (camera plane), moved exactly
     AuditStats audit;              // filled when reclipSubframe is asked to audit
 
     void merge(const ReclipStats& other) {
@@ -64,6 +67,7 @@ struct ReclipStats {
         fragments += other.fragments;
         mixed += other.mixed;
         shaded_pieces += other.shaded_pieces;
+        ode_fallbacks += other.ode_fallbacks;
         audit.merge(other.audit);
     }
 };

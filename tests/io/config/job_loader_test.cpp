@@ -1,4 +1,3 @@
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -172,9 +171,6 @@ TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
         EXPECT_EQ(job->render.max_subframes, 64);
         EXPECT_EQ(job->render.path_method, PathMethod::RK4);
         EXPECT_EQ(job->render.ode_steps, 5);
-        // Renders propagate exactly; the key only steers `clipblur paths`, and the job says so.
-        EXPECT_TRUE(std::any_of(job->warnings.begin(), job->warnings.end(),
-                                [](const std::string& w) { return w.find("render.path_method") != std::string::npos; }));
         EXPECT_EQ(job->render.visibility_rays, 2);
         EXPECT_TRUE(job->render.shadows);
         EXPECT_EQ(job->render.seed, 18446744073709551615ull);
