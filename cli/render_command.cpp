@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "io/image_writer.h"
 #include "io/job_loader.h"
+#include "io/reference_error.h"
 #include "io/frame_path.h"
 #include "io/shard.h"
 #include "io/stats_writer.h"
@@ -107,6 +108,7 @@ Action addRenderCommand(CLI::App& app) {
         std::string stats;
         std::string progress = "auto";
         std::string tile;
+        std::string reference;
     };
     auto opts = std::make_shared<Options>();
     CLI::App* sub = app.add_subcommand("render", "Render the frames of a job to OpenEXR");
@@ -121,6 +123,8 @@ Action addRenderCommand(CLI::App& app) {
         ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
     sub->add_option("--tile", opts->tile,
                     "Render shard I of N only (I/N), to <image>.tile-I-of-N.exr; a complete shard is skipped");
+    sub->add_option("--reference", opts->reference,
+                    "Reference image (#### allowed): RMSE and max error of R, G, B go to the stats and stdout");
 
     return [opts]() {
         RenderJob job = loadJob(opts->job, opts->overrides);
@@ -163,6 +167,11 @@ Action addRenderCommand(CLI::App& app) {
                 std::cout << "frame " << frame << ": " << image_path << " complete, skipped\n" << std::flush;
                 continue;
             }
+            // Read before rendering: a wrong reference path must not cost a render.
+            std::optional<ReferenceImage> reference;
+            if (!opts->reference.empty())
+                reference = readReference(outputPathForFrame(opts->reference, frame, job.frames.first, job.frames.last),
+                                          job.scene.film.width, job.scene.film.height);
             ProgressPrinter printer(style, frame);
             RenderCallbacks callbacks;
             callbacks.cancel = &g_cancel;
@@ -185,6 +194,13 @@ Action addRenderCommand(CLI::App& app) {
                 meta.tile_index = shard->index;
                 meta.tile_count = shard->count;
                 result.stats.info["window"] = toString(result.image.window());
+            }
+            if (reference) {
+                const ReferenceError e = compareWithReference(result.image, *reference);
+                result.stats.error = {{"rmse", e.rmse}, {"max_abs", e.max_abs}, {"mean_abs", e.mean_abs}};
+                result.stats.info["reference"] = outputPathForFrame(opts->reference, frame, job.frames.first, job.frames.last);
+                std::cout << "frame " << frame << ": against the reference RMSE " << e.rmse << ", max error " << e.max_abs
+                          << "\n";
             }
             writeExr(image_path, result.image, meta, job.output.half);
             std::cout << "frame " << frame << ": wrote " << image_path;

@@ -24,6 +24,7 @@ nlohmann::json statsToJson(const RenderStats& stats, int frame, const std::strin
     j["seconds"] = stats.seconds;
     j["counts"] = stats.counts;
     j["info"] = stats.info;
+    if (!stats.error.empty()) j["error"] = stats.error;
     return j;
 }
 

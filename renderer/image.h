@@ -46,6 +46,7 @@ struct RenderStats {
     std::map<std::string, double> seconds;
     std::map<std::string, long long> counts;
     std::map<std::string, std::string> info;
+    std::map<std::string, double> error;  // against `render --reference`: rmse, max_abs, mean_abs
 };
 
 }  // namespace clipblur

@@ -71,3 +71,37 @@ TEST(RenderCommand, InterruptStopsWithoutOutputAndExits130) {
 }
 
 }  // namespace clipblur
+
+namespace clipblur {
+
+// `render --reference`: a float render compared with itself has no error, and a job rendered against
+// another seed's render reports the stochastic difference; a missing reference fails before rendering.
+TEST(RenderCommand, ReferenceErrorGoesToTheStats) {
+    const fs::path dir = fs::temp_directory_path() / "clipblur_cli_reference";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string();
+    const std::string common = " --set output.half=false --set render.method=stochastic --set film.width=32"
+                               " --set film.height=18 --set render.samples=4 --progress none";
+    const std::string job = std::string(CLIPBLUR_BINARY) + " render " + CLIPBLUR_SOURCE_DIR + "/configs/default.yaml";
+    const std::string quiet = " > " + (dir / "out.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system((job + common + " --out " + a + quiet).c_str()), 0);
+    ASSERT_EQ(std::system((job + common + " --out " + b + " --reference " + a + quiet).c_str()), 0);
+    std::ifstream same(dir / "b.stats.json");
+    std::string text((std::istreambuf_iterator<char>(same)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"rmse\": 0.0"), std::string::npos) << text;
+
+    const std::string c = (dir / "c.exr").string();
+    ASSERT_EQ(std::system((job + common + " --set render.seed=9 --out " + c + " --reference " + a + quiet).c_str()), 0);
+    std::ifstream other(dir / "c.stats.json");
+    text.assign((std::istreambuf_iterator<char>(other)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"rmse\""), std::string::npos);
+    EXPECT_EQ(text.find("\"rmse\": 0.0"), std::string::npos) << "another seed's noise must show";
+
+    const int status = std::system((job + common + " --out " + (dir / "d.exr").string() + " --reference " +
+                                    (dir / "missing.exr").string() + quiet).c_str());
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    EXPECT_FALSE(fs::exists(dir / "d.exr"));
+}
+
+}  // namespace clipblur

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -23,6 +24,16 @@ double meanSquaredDifference(const RenderResult& a, const RenderResult& b) {
         for (std::size_t i = 0; i < x.size(); ++i, ++n) sum += (double(x[i]) - y[i]) * (double(x[i]) - y[i]);
     }
     return sum / double(n);
+}
+
+double maxAbsDifference(const RenderResult& a, const RenderResult& b) {
+    double worst = 0.0;
+    for (const char* c : {"R", "G", "B"}) {
+        const auto& x = channel(a, c);
+        const auto& y = channel(b, c);
+        for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(double(x[i]) - y[i]));
+    }
+    return worst;
 }
 
 RenderResult averaged(const RenderResult& a, const RenderResult& b) {
@@ -75,7 +86,14 @@ TEST_P(AgainstStochastic, DifferenceIsExplainedBySamplingNoise) {
     // held below 0.01 here as a regression bound (the noise of the 400-sample reference is ~0.002).
     const double rmse_auto = std::sqrt(meanSquaredDifference(automatic, averaged(s1, s2)));
     RecordProperty("rmse_auto", std::to_string(rmse_auto));
+    const double max_auto = maxAbsDifference(automatic, averaged(s1, s2));
+    RecordProperty("max_error_auto", std::to_string(max_auto));
     EXPECT_LT(rmse_auto, 0.01) << "subframes " << automatic.stats.counts.at("subframes_max_per_tile");
+    // Max error: the reference averages 800 samples, so its per-pixel standard deviation is at most
+    // 0.5 / sqrt(800) = 0.018 (a 50/50 edge pixel); over ~7000 channel values the largest deviation is
+    // ~4 of those. Measured 0.020-0.040 on these scenes. 0.1 (5.7 sigma) still fails for a missing or
+    // misplaced surface, which is off by 0.2-0.8 in its pixels.
+    EXPECT_LT(max_auto, 0.1);
     EXPECT_LT(ratio, 1.5) << "variance " << variance;
 }
 
