@@ -138,7 +138,10 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                    int segments, WindowSums& sums, SegmentTotals& totals) {
     const Scene& scene = ctx.job.scene;
     const RenderSettings& settings = ctx.job.render;
-    const bool both_frames = settings.method != Method::Frame0Only;
+    // Model no more than the scene needs: when nothing moves (and the subframe count is automatic) the
+    // segment-start image is the answer, with no fragment triangles kept, no closing set and no subframes.
+    const bool still_scene = subframes == 0 && sceneIsStill(scene, ts, te);
+    const bool both_frames = settings.method != Method::Frame0Only && !still_scene;
 
     // 1. Clipped, shaded fragment sets at the segment's ends, over the image and a guard band wide
     // enough that everything seen during the segment is in one of them.
@@ -147,7 +150,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     totals.band = std::max(totals.band, band);
     const TileGrid visibility_grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band,
                                    settings.tile_size);
-    const FrameFragmentOptions options{settings.visibility_rays, true, settings.audit};
+    const FrameFragmentOptions options{settings.visibility_rays, !still_scene, settings.audit};
     PixelSums still;
     still.resize(static_cast<std::size_t>(scene.film.width) * scene.film.height);
     FrameFragmentStats open_stats, close_stats;
@@ -211,7 +214,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         const auto& refs = plan.refs[static_cast<std::size_t>(index)];
         // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
         // lighting between the frames) the segment-start image is the answer.
-        const bool still_tile = tile_plan.max_sweep_pixels == 0.0 && subframes == 0 && !settings.shadows;
+        const bool still_tile =
+            still_scene || (tile_plan.max_sweep_pixels == 0.0 && subframes == 0 && !settings.shadows);
         const int n = still_tile ? 0 : tile_plan.count;
         std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
         std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));

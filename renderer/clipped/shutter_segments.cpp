@@ -42,6 +42,20 @@ double largestTurn(const Scene& scene, double t0, double t1) {
     return largest;
 }
 
+bool sceneIsStill(const Scene& scene, double t0, double t1) {
+    const CameraFrame open = evalCamera(scene.camera, t0);
+    const auto same = [&](double t) {
+        const CameraFrame c = evalCamera(scene.camera, t);
+        return c.position == open.position && c.e1 == open.e1 && c.e2 == open.e2 && c.e3 == open.e3;
+    };
+    if (!same(t1)) return false;
+    for (const CameraKey& key : scene.camera.keys)
+        if (key.time > t0 && key.time < t1 && !same(key.time)) return false;
+    for (const Object& object : scene.objects)
+        if (!isStatic(object, t0, t1)) return false;
+    return true;
+}
+
 int shutterSegments(const Scene& scene, double t0, double t1, int requested, int max_segments) {
     if (requested > 0) return std::min(requested, max_segments);
     const double degrees = largestTurn(scene, t0, t1) * 180.0 / std::numbers::pi;

@@ -15,6 +15,10 @@ double largestTurn(const Scene& scene, double t0, double t1);
 // sets. `requested` > 0 is used as given; 0 (auto) gives one segment per kAutoSegmentTurnDegrees of the largest
 // turn, at most max_segments; a shutter with no rotation is one segment, the paper's method.
 inline constexpr double kAutoSegmentTurnDegrees = 15.0;
+// Nothing in the scene moves during [t0, t1]: the camera frame is the same at t0, t1 and every camera key
+// between them, and every object isStatic. Then the shutter-open image is the whole answer.
+bool sceneIsStill(const Scene& scene, double t0, double t1);
+
 int shutterSegments(const Scene& scene, double t0, double t1, int requested, int max_segments);
 
 }  // namespace clipblur

@@ -147,6 +147,11 @@ TEST(ClippedRenderer, StaticSceneIsTheSameWithAnySubframeCount) {
     job.scene.objects.push_back(rasterQuad(3.3, 2.7, 27.1, 22.9, 5.0));
     job.scene.objects.push_back(rasterQuad(8.2, 9.9, 16.4, 30.2, 3.0));
     const RenderResult still = renderFrame(job, 0);
+    // Nothing moves: one fragment set at shutter open, no closing set, no subframes anywhere.
+    EXPECT_GT(still.stats.counts.at("open_fragments"), 0);
+    EXPECT_EQ(still.stats.counts.at("close_fragments"), 0);
+    EXPECT_EQ(still.stats.counts.at("subframes_total"), 0);
+    EXPECT_EQ(still.stats.counts.at("still_tiles"), still.stats.counts.at("tiles"));
     for (int n : {1, 2, 5}) {
         job.render.subframes = n;
         const RenderResult r = renderFrame(job, 0);
