@@ -274,25 +274,22 @@ void readObject(MapReader o, std::size_t index, const std::map<std::string, int>
     out.locations.deformation_keys.push_back(std::move(deformation_locs));
 }
 
+// `auto` (0) or a count in [1, max]; `fallback` when the key is absent.
+int autoOrCount(const ConfigNode* node, const char* key, int fallback, int max) {
+    if (!node) return fallback;
+    if (node->isScalar() && node->scalar == "auto") return 0;
+    return static_cast<int>(asInteger(*node, key, 1, max));
+}
+
 void readRender(MapReader map, RenderSettings& r) {
     if (const ConfigNode* m = map.optional("method"))
         r.method = static_cast<Method>(
             asChoice(*m, "render.method", {"clipped", "stochastic", "accumulation", "frame0_only"}));
     r.samples = map.integer("samples", r.samples, 1, kMaxSamples);
     r.max_subframes = map.integer("max_subframes", r.max_subframes, 1, kMaxSubframes);
-    if (const ConfigNode* s = map.optional("subframes")) {
-        if (s->isScalar() && s->scalar == "auto")
-            r.subframes = 0;
-        else
-            r.subframes = static_cast<int>(asInteger(*s, "render.subframes", 1, r.max_subframes));
-    }
+    r.subframes = autoOrCount(map.optional("subframes"), "render.subframes", r.subframes, r.max_subframes);
     r.max_segments = map.integer("max_segments", r.max_segments, 1, kMaxSegments);
-    if (const ConfigNode* s = map.optional("segments")) {
-        if (s->isScalar() && s->scalar == "auto")
-            r.segments = 0;
-        else
-            r.segments = static_cast<int>(asInteger(*s, "render.segments", 1, r.max_segments));
-    }
+    r.segments = autoOrCount(map.optional("segments"), "render.segments", r.segments, r.max_segments);
     if (const ConfigNode* p = map.optional("path_method"))
         r.path_method = static_cast<PathMethod>(asChoice(*p, "render.path_method", {"exact", "euler", "rk4"}));
     r.ode_steps = map.integer("ode_steps", r.ode_steps, 1, kMaxOdeSteps);

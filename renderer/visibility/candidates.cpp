@@ -5,13 +5,10 @@
 
 namespace clipblur {
 
-MeshAdjacency::MeshAdjacency(const Scene& scene) {
+MeshAdjacency::MeshAdjacency(const Scene& scene) : scene_(scene) {
     objects_.resize(scene.objects.size());
-    mesh_refs_.reserve(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const Mesh& mesh = scene.objects[o].mesh;
-        // Only the index lists are needed; keep a copy of them rather than a pointer into Object.
-        mesh_refs_.push_back(Mesh{{}, mesh.triangles});
         auto& po = objects_[o];
         po.offsets.assign(mesh.positions.size() + 1, 0);
         for (const auto& t : mesh.triangles)
@@ -22,7 +19,6 @@ MeshAdjacency::MeshAdjacency(const Scene& scene) {
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
             for (std::uint32_t v : mesh.triangles[t]) po.items[cursor[v]++] = t;
     }
-    meshes_ = &mesh_refs_;
 }
 
 namespace {

@@ -13,12 +13,13 @@ namespace clipblur {
 // Triangles sharing a vertex with a given triangle, per object (vertex -> triangles in CSR form).
 class MeshAdjacency {
 public:
+    // Keeps a reference to the scene's meshes, which must outlive it (the renderers hold both).
     explicit MeshAdjacency(const Scene& scene);
 
     template <typename F>
     void forEachNeighbour(std::uint32_t object, std::uint32_t triangle, F&& f) const {
         const auto& o = objects_[object];
-        for (std::uint32_t v : (*meshes_)[object].triangles[triangle])
+        for (std::uint32_t v : scene_.objects[object].mesh.triangles[triangle])
             for (std::uint32_t i = o.offsets[v]; i < o.offsets[v + 1]; ++i) f(o.items[i]);
     }
 
@@ -27,9 +28,8 @@ private:
         std::vector<std::uint32_t> offsets;
         std::vector<std::uint32_t> items;
     };
+    const Scene& scene_;
     std::vector<PerObject> objects_;
-    const std::vector<Mesh>* meshes_ = nullptr;
-    std::vector<Mesh> mesh_refs_;
 };
 
 struct CandidateStats {
