@@ -96,10 +96,6 @@ void reportAudit(RenderStats& stats, const AuditStats& audit) {
                                           " invariant violations; " + audit.first_violation);
 }
 
-}  // namespace
-
-namespace {
-
 // Per-pixel sums over the render window (window-local, row-major), before the background is added.
 struct WindowSums {
     std::vector<glm::dvec3> colour;

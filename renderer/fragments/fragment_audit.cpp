@@ -252,11 +252,12 @@ void auditTile(std::span<const ScreenTriangle> triangles, const FragmentTile& ti
                 for (const glm::dvec2& v : triangles[t].raster) p.push_back(v - corner);
                 covers.push_back(std::move(p));
             }
-            const double error = std::abs(unionAreaInUnitSquare(covers) - sum);
+            const double inputs_union = unionAreaInUnitSquare(covers);
+            const double error = std::abs(inputs_union - sum);
             stats.worst_coverage = std::max(stats.worst_coverage, error);
             if (error > tolerance.area + tile.dropped_area)
                 audit.fail("fragments cover " + std::to_string(sum) + " px^2, the inputs " +
-                           std::to_string(unionAreaInUnitSquare(covers)));
+                           std::to_string(inputs_union));
         }
     }
 }

@@ -45,7 +45,9 @@ struct TriangleFunctions {
     std::array<Affine, 3> object_over_z{};
     bool valid = false;
 
-    TriangleFunctions(const ScreenTriangle& t, const std::array<glm::dvec3, 3>& object) : origin(t.raster[0]) {
+    // `axes`: how many texture axes need object_over_z (0 for an untextured material).
+    TriangleFunctions(const ScreenTriangle& t, const std::array<glm::dvec3, 3>& object, int axes)
+        : origin(t.raster[0]) {
         const glm::dvec2 e1 = t.raster[1] - origin, e2 = t.raster[2] - origin;
         const double a2 = differenceOfProducts(e1.x, e2.y, e1.y, e2.x);
         if (a2 == 0.0 || !std::isfinite(a2)) return;
@@ -63,7 +65,7 @@ struct TriangleFunctions {
             return f;
         };
         inv_depth = combine(t.inv_depth);
-        for (int axis = 0; axis < 3; ++axis)
+        for (int axis = 0; axis < axes; ++axis)
             object_over_z[axis] = combine({t.inv_depth[0] * object[0][axis], t.inv_depth[1] * object[1][axis],
                                            t.inv_depth[2] * object[2][axis]});
         valid = true;
@@ -98,7 +100,7 @@ void shadeFragment(const ConvexPolygon& polygon, const ScreenTriangle& screen, c
     const int axes = texture.kind == Texture::Kind::None || !(texture.scale > 0.0)
                          ? 0
                          : (texture.kind == Texture::Kind::Stripe ? 1 : 3);
-    const TriangleFunctions f(screen, objectPositions(scene, source));
+    const TriangleFunctions f(screen, axes > 0 ? objectPositions(scene, source) : std::array<glm::dvec3, 3>{}, axes);
     if (!f.valid) return;
     // Per-thread buffers: one fragment's cells never outlive this call, and reuse avoids an allocation
     // per fragment in the subframe loop.
