@@ -12,6 +12,7 @@ namespace clipblur {
 
 enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
 enum class PathMethod { Exact, Euler, RK4 };
+enum class TimeIntegration { Subframes, Sweep };
 
 // The name a job file uses for the method.
 const char* methodName(Method method);
@@ -36,6 +37,11 @@ struct RenderSettings {
     int max_segments = 16;
     PathMethod path_method = PathMethod::Exact;
     int ode_steps = 16;        // per subframe interval, Euler and RK4 only
+    // Subframes: the paper's point samples, every subframe re-clipped. Sweep: a subframe's re-clipped
+    // fragments also stand for the rest of its interval, each moved along its own displacement to
+    // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel.
+    TimeIntegration time_integration = TimeIntegration::Subframes;
+    double sweep_spacing = 1.0;
     int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)
     bool shadows = false;
     std::uint64_t seed = 0;

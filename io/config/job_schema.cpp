@@ -293,6 +293,10 @@ void readRender(MapReader map, RenderSettings& r) {
     if (const ConfigNode* p = map.optional("path_method"))
         r.path_method = static_cast<PathMethod>(asChoice(*p, "render.path_method", {"exact", "euler", "rk4"}));
     r.ode_steps = map.integer("ode_steps", r.ode_steps, 1, kMaxOdeSteps);
+    if (const ConfigNode* t = map.optional("time_integration"))
+        r.time_integration =
+            static_cast<TimeIntegration>(asChoice(*t, "render.time_integration", {"subframes", "sweep"}));
+    r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
     r.visibility_rays = map.integer("visibility_rays", r.visibility_rays, 0, kMaxVisibilityRays);
     r.shadows = map.boolean("shadows", r.shadows);
     if (const ConfigNode* s = map.optional("seed")) r.seed = asUnsigned(*s, "render.seed");

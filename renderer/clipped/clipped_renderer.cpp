@@ -1,6 +1,7 @@
 #include "renderer/clipped/clipped_renderer.h"
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <mutex>
@@ -122,10 +123,38 @@ struct ClippedContext {
 struct SegmentTotals {
     FrameFragmentStats open, close;
     ReclipStats reclip;
+    long long spilled = 0;  // sweep: pixel sums one tile's fragments left in another tile's pixels
     long long subframes_total = 0, still_tiles = 0, capped_tiles = 0, measured = 0, near_crossings = 0;
     int max_tile_subframes = 0;
     int band = 0;
 };
+
+// One pixel's sums from one tile: to the window pixel `out` when it is another tile's pixel.
+struct Spill {
+    std::size_t out = 0;
+    glm::dvec3 colour{0.0};
+    double covered = 0.0, depth = 0.0;
+    glm::dvec2 motion{0.0};
+};
+
+// The sweep interval layout of a moving tile with n subframes: its fragments move at most reach pixels
+// during an interval (the plan bounds speed x interval by max_sweep_pixels / n; twice that allows for the
+// peak speed falling between the plan's samples), so they reach reach / 2 + 1 pixels past where they are
+// re-clipped. Tiles on the film edge also re-clip that far outside it, where nothing else would, because
+// surfaces there sweep into the film.
+SweepInterval sweepInterval(const Tile& tile, const SubframePlan& plan, int n, int film_w, int film_h, int positions) {
+    SweepInterval s;
+    s.positions = positions;
+    s.reach = 2.0 * plan.max_sweep_pixels / n + 1.0;
+    const int apron = static_cast<int>(std::ceil(0.5 * s.reach)) + 1;
+    s.resolve = tile;
+    if (tile.x0 == 0) s.resolve.x0 -= apron;
+    if (tile.y0 == 0) s.resolve.y0 -= apron;
+    if (tile.x1 == film_w) s.resolve.x1 += apron;
+    if (tile.y1 == film_h) s.resolve.y1 += apron;
+    s.box = {s.resolve.x0 - apron, s.resolve.y0 - apron, s.resolve.x1 + apron, s.resolve.y1 + apron};
+    return s;
+}
 
 // The paper's method over one shutter segment [ts, te]: fragment sets at both ends, per-tile subframes,
 // propagation, re-clip and shading; adds weight x (the segment's average) to `sums`. `subframes` > 0
@@ -138,6 +167,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     // segment-start image is the answer, with no fragment triangles kept, no closing set and no subframes.
     const bool still_scene = subframes == 0 && sceneIsStill(scene, ts, te);
     const bool both_frames = settings.method != Method::Frame0Only && !still_scene;
+    const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
 
     // 1. Clipped, shaded fragment sets at the segment's ends, over the image and a guard band wide
     // enough that everything seen during the segment is in one of them.
@@ -176,7 +206,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         if (both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, close);
     }
     const MotionPlan plan =
-        planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes, settings.max_subframes);
+        planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes, settings.max_subframes, sweeping);
     totals.capped_tiles += plan.capped_tiles;
     totals.measured += plan.measured;
     totals.near_crossings += plan.near_crossings;
@@ -195,17 +225,29 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             ctx.callbacks.progress(done, progress_total);
         }
     };
+    // Sweep positions per interval, shared by the whole segment: the fastest fragment moves about
+    // sweep_spacing pixels between positions (eq. 24's pixel rule, applied to positions, not re-clips).
+    int positions = 1;
+    if (sweeping) {
+        double fastest = 0.0;
+        int shared = 1;
+        for (const SubframePlan& p : plan.tiles) {
+            fastest = std::max(fastest, p.max_sweep_pixels);
+            shared = std::max(shared, p.count);
+        }
+        positions = subframeCount(fastest / shared / settings.sweep_spacing, settings.max_subframes);
+    }
     const DataWindow& window = ctx.window;
+    const int film_w = scene.film.width, film_h = scene.film.height;
+    // Sweep integration: what a tile's fragments leave in other tiles' pixels, added after all tiles in
+    // tile order so the sums do not depend on which thread finished first.
+    std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.grid.count()) : 0);
     tbb::parallel_for(0, ctx.grid.count(), [&](int index) {
         if (ctx.callbacks.cancel && ctx.callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
             return;
         }
         const Tile tile = ctx.grid.tile(index);
-        if (!window.overlaps(tile.x0, tile.y0, tile.x1, tile.y1)) {
-            progress();
-            return;
-        }
         const SubframePlan& tile_plan = plan.tiles[static_cast<std::size_t>(index)];
         const auto& refs = plan.refs[static_cast<std::size_t>(index)];
         // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
@@ -213,16 +255,45 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         const bool still_tile =
             still_scene || (tile_plan.max_sweep_pixels == 0.0 && subframes == 0 && !settings.shadows);
         const int n = still_tile ? 0 : tile_plan.count;
+        SweepInterval sweep;
+        if (sweeping && n > 0) sweep = sweepInterval(tile, tile_plan, n, film_w, film_h, positions);
+        const Tile reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
+        if (!window.overlaps(reach.x0, reach.y0, reach.x1, reach.y1)) {
+            progress();
+            return;
+        }
         std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
         std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
         const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
+        const double half = 0.5 * (te - ts) / std::max(n, 1);
         tbb::parallel_for(0, n, [&](int k) {
             const double t = times[static_cast<std::size_t>(k)];
             const MotionSnapshot snapshot(scene, ctx.projection, t);
             ReclipScratch scratch;
-            reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile, settings.audit,
-                           scratch, tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
+            std::optional<MotionSnapshot> begin, end;
+            SweepInterval interval = sweep;
+            if (sweeping) {
+                begin.emplace(scene, ctx.projection, t - half);
+                end.emplace(scene, ctx.projection, t + half);
+                interval.begin = &*begin;
+                interval.end = &*end;
+            }
+            reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile,
+                           sweeping ? &interval : nullptr, settings.audit, scratch,
+                           tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
         });
+        const double w = weight / std::max(n, 1);
+        const auto total = [&](int x, int y) {  // fixed order: bit-identical for any thread count
+            Spill sum;
+            for (const TileSums& s : tile_sums) {
+                const std::size_t i = s.index(x, y);
+                sum.colour += s.colour[i];
+                sum.covered += s.covered[i];
+                sum.depth += s.depth[i];
+                sum.motion += s.motion[i];
+            }
+            return sum;
+        };
         for (int y = std::max(tile.y0, window.y0); y < std::min(tile.y1, window.y1()); ++y) {
             for (int x = std::max(tile.x0, window.x0); x < std::min(tile.x1, window.x1()); ++x) {
                 const std::size_t out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
@@ -233,21 +304,27 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                     sums.depth[out] += weight * still.depth[pixel];
                     continue;
                 }
-                const std::size_t i = static_cast<std::size_t>(y - tile.y0) * tile.width() + (x - tile.x0);
-                glm::dvec3 colour(0.0);
-                double covered = 0.0, depth = 0.0;
-                glm::dvec2 motion(0.0);
-                for (const TileSums& s : tile_sums) {  // fixed order: bit-identical for any thread count
-                    colour += s.colour[i];
-                    covered += s.covered[i];
-                    depth += s.depth[i];
-                    motion += s.motion[i];
+                const Spill sum = total(x, y);
+                sums.colour[out] += sum.colour * w;
+                sums.covered[out] += sum.covered * w;
+                sums.depth[out] += sum.depth * w;
+                sums.motion[out] += sum.motion * w;
+            }
+        }
+        if (sweeping && n > 0) {
+            auto& mine = spills[static_cast<std::size_t>(index)];
+            for (int y = std::max(sweep.box.y0, window.y0); y < std::min(sweep.box.y1, window.y1()); ++y) {
+                for (int x = std::max(sweep.box.x0, window.x0); x < std::min(sweep.box.x1, window.x1()); ++x) {
+                    if (x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1) continue;
+                    Spill sum = total(x, y);
+                    if (sum.covered == 0.0) continue;
+                    sum.out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
+                    sum.colour *= w;
+                    sum.covered *= w;
+                    sum.depth *= w;
+                    sum.motion *= w;
+                    mine.push_back(sum);
                 }
-                const double w = weight / n;
-                sums.colour[out] += colour * w;
-                sums.covered[out] += covered * w;
-                sums.depth[out] += depth * w;
-                sums.motion[out] += motion * w;
             }
         }
         {
@@ -259,6 +336,15 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         }
         progress();
     });
+    for (const auto& tile_spills : spills) {
+        for (const Spill& s : tile_spills) {
+            sums.colour[s.out] += s.colour;
+            sums.covered[s.out] += s.covered;
+            sums.depth[s.out] += s.depth;
+            sums.motion[s.out] += s.motion;
+            ++totals.spilled;
+        }
+    }
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 }
 
@@ -332,6 +418,11 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["reclip_fragments"] = totals.reclip.fragments;
     stats.counts["reclip_mixed_fragments"] = totals.reclip.mixed;
     stats.counts["reclip_shaded_pieces"] = totals.reclip.shaded_pieces;
+    if (settings.time_integration == TimeIntegration::Sweep) {
+        stats.counts["sweep_positions"] = totals.reclip.sweep_positions;
+        stats.counts["sweep_unswept_fragments"] = totals.reclip.sweep_unswept;
+        stats.counts["sweep_spilled_pixels"] = totals.spilled;
+    }
     if (settings.path_method != PathMethod::Exact) stats.counts["ode_fallbacks"] = totals.reclip.ode_fallbacks;
     stats.counts["triangles"] = embree.stats().triangles;
     recordFrameStats(stats, "open_", totals.open);

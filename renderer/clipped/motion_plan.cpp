@@ -22,7 +22,7 @@ bool cameraIsStill(const Camera& camera, double t0, double t1) {
 }
 
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
-                      const FragmentLayers& layers, int subframes, int max_subframes) {
+                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep) {
     const bool still_camera = cameraIsStill(scene.camera, t0, t1);
     std::vector<char> still_object(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
@@ -46,7 +46,12 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                                                   MeshPoint{t.object, t.triangle, t.bary[2]}};
             if (still_object[t.object]) {
                 FragmentMotion fm;
-                for (const MeshPoint& p : points) fm.swept.expand(project(open, scene, p).raster);
+                for (const MeshPoint& p : points) {
+                    const glm::dvec2 r = project(open, scene, p).raster;
+                    fm.swept.expand(r);
+                    fm.start += r / 3.0;
+                }
+                fm.end = fm.start;
                 m[i] = fm;
             } else {
                 m[i] = sampler.measure(points);
@@ -95,9 +100,49 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             p.max_path_pixels = std::max(p.max_path_pixels, fm.max_path_pixels);
             p.max_sweep_pixels = std::max(p.max_sweep_pixels, fm.max_sweep_pixels);
         }
-        p.count = subframes > 0 ? std::min(subframes, max_subframes)
-                                : subframeCount(p.max_sweep_pixels, max_subframes, &p.capped);
+        if (subframes > 0) {
+            p.count = std::min(subframes, max_subframes);
+        } else if (!sweep) {
+            p.count = subframeCount(p.max_sweep_pixels, max_subframes, &p.capped);
+        } else {
+            // Sweep integration moves each fragment along its own displacement between re-clips, exact
+            // for the motion that surfaces near each other share. What is left to subframes is how far
+            // they move relative to each other (what they hide changes: at most a pixel per subframe,
+            // as eq. 24) and how far a path leaves its chord (it shrinks as the square of the count).
+            const Tile t = grid.tile(index);
+            const double pad = 0.5 * size;
+            const auto near = [&](const glm::dvec2& q) {
+                return q.x >= t.x0 - pad && q.x <= t.x1 + pad && q.y >= t.y0 - pad && q.y <= t.y1 + pad;
+            };
+            RasterBox displacements;
+            double deviation = 0.0;
+            for (const FragmentRef& ref : refs) {
+                const FragmentMotion& fm = motion[ref.layer][ref.index];
+                if (fm.crosses_near) continue;
+                deviation = std::max(deviation, fm.chord_deviation);
+                if (near(fm.start) || near(fm.end)) displacements.expand(fm.end - fm.start);
+            }
+            const double relative = displacements.empty() ? 0.0 : glm::length(displacements.hi - displacements.lo);
+            constexpr double kChordTolerance = 0.1;  // px
+            p.count = subframeCount(std::max(relative, std::sqrt(deviation / kChordTolerance)), max_subframes,
+                                    &p.capped);
+        }
     });
+    // Sweep integration carries fragments across tile borders during an interval, so every moving tile
+    // must share the intervals (different ones would count a border-crossing surface twice or not at all).
+    if (sweep) {
+        int shared = 1;
+        bool capped = false;
+        for (const SubframePlan& p : plan.tiles)
+            if (p.max_sweep_pixels > 0.0) {
+                shared = std::max(shared, p.count);
+                capped = capped || p.capped;
+            }
+        for (SubframePlan& p : plan.tiles) {
+            p.count = shared;
+            p.capped = capped && p.max_sweep_pixels > 0.0;
+        }
+    }
     for (const SubframePlan& p : plan.tiles) plan.capped_tiles += p.capped ? 1 : 0;
     return plan;
 }

@@ -20,8 +20,10 @@ struct MotionPlan {
 // Measures every fragment triangle's swept raster box and peak speed over [t0, t1] (triangles of objects
 // that do not move under a still camera are measured at t0 only), bins them to the tiles their swept
 // box overlaps, and plans each tile's subframes (the corrected eq. 24). subframes > 0 forces that count.
+// With `sweep` (render.time_integration: sweep) the count follows relative motion and path curvature, and
+// every moving tile gets the same count.
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
-                      const FragmentLayers& layers, int subframes, int max_subframes);
+                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep);
 
 // True when the camera keys give the same pose at every time of [t0, t1].
 bool cameraIsStill(const Camera& camera, double t0, double t1);

@@ -1,10 +1,15 @@
 #include "renderer/clipped/subframe_reclip.h"
 
+#include <cmath>
+#include <optional>
+
 #include "renderer/visibility/frame_geometry.h"
 
 namespace clipblur {
 
-void TileSums::reset(std::size_t pixels) {
+void TileSums::reset(const Tile& b) {
+    box = b;
+    const std::size_t pixels = static_cast<std::size_t>(b.width()) * b.height();
     colour.assign(pixels, glm::dvec3(0.0));
     covered.assign(pixels, 0.0);
     depth.assign(pixels, 0.0);
@@ -63,11 +68,25 @@ void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdeProp
     if (n == 4) addScreenTriangle(snapshot, {w[0], w[2], w[3]}, {t.object, t.triangle, {b[0], b[2], b[3]}}, ref, weight, scratch);
 }
 
+// How far the surface point seen at the fragment's centroid moves in the image over the interval, from
+// its exact positions at the interval's ends (sample: the centroid on the source screen triangle).
+// Nullopt when the point is behind the camera at either end.
+std::optional<glm::dvec2> sweepDisplacement(const Scene& scene, const SweepInterval& sweep,
+                                            const SourceTriangle& source, const SourceSample& sample) {
+    glm::dvec3 bary(0.0);
+    for (int i = 0; i < 3; ++i) bary += sample.bary[i] * source.bary[i];
+    const MeshPoint point{source.object, source.triangle, bary};
+    const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
+    if (a.behind || b.behind) return std::nullopt;
+    return b.raster - a.raster;
+}
+
 }  // namespace
 
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
                     const FragmentLayers& layers, std::span<const FragmentRef> refs, const Tile& tile,
-                    bool audit, ReclipScratch& scratch, TileSums& out, ReclipStats& stats) {
+                    const SweepInterval* sweep, bool audit, ReclipScratch& scratch, TileSums& out,
+                    ReclipStats& stats) {
     scratch.screen.clear();
     scratch.origin.clear();
     scratch.sources.clear();
@@ -76,13 +95,13 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
         propagate(scene, snapshot, layers.ode, (*layers.triangles[ref.layer])[ref.index], ref, weights[ref.layer],
                   scratch, stats);
 
-    resolveTile(scratch.screen, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch.tile, scratch.fragments);
+    const Tile region = sweep ? sweep->resolve : tile;
+    resolveTile(scratch.screen, {region.x0, region.y0, region.width(), region.height()}, {}, scratch.tile,
+                scratch.fragments);
     if (audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
-    const std::size_t pixels = static_cast<std::size_t>(tile.width()) * tile.height();
-    out.reset(pixels);
-    for (int y = tile.y0; y < tile.y1; ++y) {
-        for (int x = tile.x0; x < tile.x1; ++x) {
-            const std::size_t i = static_cast<std::size_t>(y - tile.y0) * tile.width() + (x - tile.x0);
+    out.reset(sweep ? sweep->box : tile);
+    for (int y = region.y0; y < region.y1; ++y) {
+        for (int x = region.x0; x < region.x1; ++x) {
             for (const Fragment& fragment : scratch.fragments.pixel(x, y)) {
                 ++stats.fragments;
                 if (fragment.source_count > 1) ++stats.mixed;
@@ -91,6 +110,7 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                 polygon.close();
                 glm::dvec3 colour(0.0);
                 glm::dvec2 motion(0.0);
+                scratch.textured.clear();
                 for (int k = 0; k < fragment.source_count; ++k) {
                     const std::uint32_t s = fragment.sources[k].source;
                     const FragmentRef ref = scratch.origin[s];
@@ -106,15 +126,50 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                         sum += piece.area * piece.colour;
                         area += piece.area;
                     }
-                    if (area > 0.0) colour += m * sum / area;
+                    if (sweep && scratch.pieces.size() > 1 && area > 0.0) {
+                        // Swept pieces keep their own colours: the fragment's mean colour smeared over
+                        // pixels would move a texture edge inside it to the fragment's centre.
+                        for (const ShadedPiece& piece : scratch.pieces)
+                            scratch.textured.push_back({piece.polygon, m * piece.colour * (fragment.area / area)});
+                    } else if (area > 0.0) {
+                        colour += m * sum / area;
+                    }
                     if (!layers.motion[ref.layer].empty()) motion += m * glm::dvec2(layers.motion[ref.layer][ref.index]);
                 }
-                out.colour[i] += fragment.area * colour;
-                out.covered[i] += fragment.area;
-                out.motion[i] += fragment.area * motion;
+                const std::uint32_t first = fragment.sources[0].source;
+                const glm::dvec2 c = centroid(polygon);
                 SourceSample sample;
-                if (evalSource(scratch.screen[fragment.sources[0].source], centroid(polygon), sample) && sample.inv_depth > 0.0)
-                    out.depth[i] += fragment.area / sample.inv_depth;
+                const bool sampled = evalSource(scratch.screen[first], c, sample) && sample.inv_depth > 0.0;
+                const double inv_depth = sampled ? sample.inv_depth : 0.0;
+                const auto add = [&](std::size_t i, double area) {
+                    out.colour[i] += area * colour;
+                    out.covered[i] += area;
+                    out.motion[i] += area * motion;
+                    if (inv_depth > 0.0) out.depth[i] += area / inv_depth;
+                };
+                if (!sweep) {
+                    add(out.index(x, y), fragment.area);
+                    continue;
+                }
+                const std::optional<glm::dvec2> d =
+                    sampled ? sweepDisplacement(scene, *sweep, scratch.sources[first], sample) : std::nullopt;
+                int positions = 1;
+                glm::dvec2 shift(0.0);
+                if (d && glm::length(*d) <= sweep->reach) {
+                    shift = *d;
+                    if (shift != glm::dvec2(0.0)) positions = sweep->positions;
+                } else {
+                    ++stats.sweep_unswept;
+                }
+                stats.sweep_positions += positions;
+                scratch.footprint.clear();
+                sweptFootprint(polygon, shift, positions, scratch.footprint);
+                for (const PixelWeight& w : scratch.footprint) add(out.index(w.x, w.y), w.weight);
+                for (const auto& [piece, piece_colour] : scratch.textured) {
+                    scratch.footprint.clear();
+                    sweptFootprint(piece, shift, positions, scratch.footprint);
+                    for (const PixelWeight& w : scratch.footprint) out.colour[out.index(w.x, w.y)] += w.weight * piece_colour;
+                }
             }
         }
     }

@@ -9,6 +9,7 @@
 #include "renderer/clipped/fragment_triangle.h"
 #include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/fragment_tile.h"
+#include "renderer/geometry/swept_footprint.h"
 #include "renderer/propagation/ode_propagation.h"
 #include "renderer/propagation/surface_path.h"
 #include "renderer/shading/fragment_shading.h"
@@ -33,21 +34,45 @@ struct FragmentLayers {
     const OdePropagator* ode = nullptr;  // render.path_method euler/rk4: the paper's ODE, else exact paths
 };
 
-// One subframe's pixel values over a tile (tile-local, row-major), before the background is added.
+// One subframe's pixel values over a box of pixels (box-local, row-major), before the background is
+// added. The box is the tile, or with sweep integration the tile and the margin its fragments reach.
 struct TileSums {
+    Tile box;
     std::vector<glm::dvec3> colour;
     std::vector<double> covered;
     std::vector<double> depth;
     std::vector<glm::dvec2> motion;
 
-    void reset(std::size_t pixels);
+    void reset(const Tile& box);
+    std::size_t index(int x, int y) const {
+        return static_cast<std::size_t>(y - box.y0) * box.width() + (x - box.x0);
+    }
 };
 
+// Sweep integration (render.time_integration: sweep): the subframe at time t stands for the interval
+// [begin, end] around it. Each re-clipped fragment is moved along its own displacement over the interval
+// (where the surface point under its centroid is at the interval's ends) and placed at `positions`
+// equally spaced times, the same times for every fragment of the segment: fragments sampled at different
+// times would open cracks and overlaps along their shared edges. Visibility stays as resolved at t, so for
+// what translates in the image without changing what it hides this equals point subframes at all those
+// times; that is why re-clips can be spaced by relative motion and curvature alone.
+struct SweepInterval {
+    const MotionSnapshot* begin = nullptr;
+    const MotionSnapshot* end = nullptr;
+    int positions = 1;
+    // A displacement longer than this (px) is not swept: the fragment stays a point sample at t. The tile
+    // plan bounds every displacement by it; only paths it could not measure (camera plane) exceed it.
+    double reach = 0.0;
+    Tile resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
+    Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
+};
 struct ReclipScratch {
     std::vector<ScreenTriangle> screen;
     std::vector<FragmentRef> origin;      // per screen triangle
     std::vector<SourceTriangle> sources;  // per screen triangle: its vertices on the mesh triangle
     std::vector<ShadedPiece> pieces;
+    std::vector<PixelWeight> footprint;
+    std::vector<std::pair<ConvexPolygon, glm::dvec3>> textured;  // sweep: pieces with their colour per px^2
     TileScratch tile;
     FragmentTile fragments;
 };
@@ -59,6 +84,8 @@ struct ReclipStats {
     long long mixed = 0;           // pieces where both frames' copies of a surface coincide
     long long shaded_pieces = 0;   // shading evaluations (after texture-cell cuts)
     long long ode_fallbacks = 0;   // vertices the ODE could not carry (camera plane), moved exactly
+    long long sweep_positions = 0; // sweep: fragment positions placed (one per fragment per position)
+    long long sweep_unswept = 0;   // sweep: fragments left as point samples (see SweepInterval::reach)
     AuditStats audit;              // filled when reclipSubframe is asked to audit
 
     void merge(const ReclipStats& other) {
@@ -68,6 +95,8 @@ struct ReclipStats {
         mixed += other.mixed;
         shaded_pieces += other.shaded_pieces;
         ode_fallbacks += other.ode_fallbacks;
+        sweep_positions += other.sweep_positions;
+        sweep_unswept += other.sweep_unswept;
         audit.merge(other.audit);
     }
 };
@@ -76,10 +105,11 @@ struct ReclipStats {
 // time along its exact path (frame-0 ones forward, frame-1 ones backward: the same function of time),
 // clips pieces crossing the camera plane in 3D, re-clips the union per pixel into non-overlapping
 // fragments (equal range: one kept, colours mixed with weights 1-f and f), shades each piece as its frame
-// saw it, and reduces each pixel.
+// saw it, and reduces each pixel. With `sweep` the fragments of sweep->resolve are swept over the
+// interval into sweep->box; without, the tile's pixels get the point sample at the snapshot's time.
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
-                    const FragmentLayers& layers,
-                    std::span<const FragmentRef> refs, const Tile& tile, bool audit, ReclipScratch& scratch,
-                    TileSums& out, ReclipStats& stats);
+                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const Tile& tile,
+                    const SweepInterval* sweep, bool audit, ReclipScratch& scratch, TileSums& out,
+                    ReclipStats& stats);
 
 }  // namespace clipblur

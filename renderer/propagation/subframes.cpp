@@ -81,14 +81,18 @@ double ShutterPathSampler::pathLength(const MeshPoint& point) const {
 FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) const {
     FragmentMotion out;
     double max_speed = 0.0;
+    thread_local std::vector<glm::dvec2> positions;
+    const double t0 = nodes_.front().snapshot.time;
     for (const MeshPoint& vertex : vertices) {
         double length = 0.0;
+        positions.clear();
         for (const Node& node : nodes_) {
             const ProjectedMotion m = projectMotion(node.snapshot, *scene_, vertex);
             if (m.point.behind) {
                 out.crosses_near = true;
                 continue;
             }
+            positions.push_back(m.point.raster);
             out.swept.expand(m.point.raster);
             if (node.weight == 0.0) continue;
             const double speed = glm::length(m.raster_velocity);
@@ -96,6 +100,15 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             max_speed = std::max(max_speed, speed);
         }
         out.max_path_pixels = std::max(out.max_path_pixels, length);
+        if (positions.size() == nodes_.size() && duration_ > 0.0) {
+            const glm::dvec2 a = positions.front(), b = positions.back();
+            out.start += a / double(vertices.size());
+            out.end += b / double(vertices.size());
+            for (std::size_t i = 0; i < nodes_.size(); ++i) {
+                const double u = (nodes_[i].snapshot.time - t0) / duration_;
+                out.chord_deviation = std::max(out.chord_deviation, glm::length(positions[i] - (a + u * (b - a))));
+            }
+        }
     }
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
     if (out.crosses_near) {

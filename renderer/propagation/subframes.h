@@ -31,6 +31,10 @@ struct FragmentMotion {
     // vertex within a pixel per step. It is never below max_path_pixels and equals it for uniform speed.
     double max_sweep_pixels = 0.0;
     bool crosses_near = false;      // a vertex reaches the camera plane: swept is the whole plane
+    glm::dvec2 start{0.0}, end{0.0};  // mean raster position of the vertices at shutter open and close
+    // Largest distance of a sampled vertex position from where uniform straight motion between its
+    // open and close positions would put it at that time (curvature and changing speed together).
+    double chord_deviation = 0.0;
 };
 
 // Samples the exact vertex paths over the shutter [t0, t1]. The shutter is cut at every camera,

@@ -1,0 +1,138 @@
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "renderer/render.h"
+#include "renderer/test_scenes.h"
+
+namespace clipblur {
+
+namespace {
+
+using test::rasterQuad;
+using test::squareFilmJob;
+using test::worldAtRaster;
+
+const std::vector<float>& channel(const RenderResult& r, const char* name) { return r.image.find(name)->values; }
+
+Object movingQuad(double x0, double y0, double x1, double y1, double depth, glm::dvec2 v) {
+    Object quad = rasterQuad(x0, y0, x1, y1, depth);
+    const glm::dvec3 shift = worldAtRaster(x0 + v.x, y0 + v.y, depth) - worldAtRaster(x0, y0, depth);
+    quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
+    quad.transform.push_back(TransformKey{1.0, shift, {1, 0, 0, 0}, glm::dvec3(1.0)});
+    return quad;
+}
+
+double maxDifference(const RenderResult& a, const RenderResult& b) {
+    double worst = 0.0;
+    for (const char* c : {"R", "G", "B", "A"})
+        for (std::size_t i = 0; i < channel(a, c).size(); ++i)
+            worst = std::max(worst, double(std::abs(channel(a, c)[i] - channel(b, c)[i])));
+    return worst;
+}
+
+// Sweep with `intervals` re-clips and exactly `positions` positions per interval for a quad moving by v.
+RenderJob sweepJob(RenderJob job, glm::dvec2 v, int intervals, int positions) {
+    job.render.time_integration = TimeIntegration::Sweep;
+    job.render.subframes = intervals;
+    // Each interval moves the quad by |v| / intervals; a spacing a hair above that over `positions` keeps
+    // ceil(|d| / spacing) at `positions` despite rounding.
+    job.render.sweep_spacing = glm::length(v) / intervals / positions * (1.0 + 1e-9);
+    return job;
+}
+
+// Vertex positions of a translating quad, and so every pixel's coverage, are the same whether a time is
+// a subframe of its own or a sweep position of a subframe's interval: sweep with K intervals of M
+// positions and point subframes at N = K M are the same midpoint rule (times (j + 1/2) / N), so the
+// images agree to rounding. Float storage: 1e-6.
+constexpr double kFloatTolerance = 1e-6;
+
+}  // namespace
+
+TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
+    const glm::dvec2 v(11.4, 3.7);
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    // Stripes across x, 0.8 px wide at this depth (a checker would also cut along z, and the quad's
+    // plane z = 6 lies on a cell boundary, where rounding picks the colour).
+    Material stripes;
+    stripes.texture.kind = Texture::Kind::Stripe;
+    stripes.texture.scale = 0.3;
+    stripes.texture.color2 = glm::dvec3(0.2, 0.5, 0.0);
+    job.scene.materials.push_back(stripes);
+    Object quad = movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v);
+    quad.material = 1;  // texture edges inside fragments must move with the surface, not with the fragment
+    job.scene.objects.push_back(quad);
+    job.render.subframes = 12;
+    const RenderResult point = renderFrame(job, 0);
+    for (const auto& [intervals, positions] : {std::pair{1, 12}, {3, 4}, {12, 1}}) {
+        const RenderResult sweep = renderFrame(sweepJob(job, v, intervals, positions), 0);
+        EXPECT_EQ(sweep.stats.counts.at("subframes_max_per_tile"), intervals);
+        EXPECT_LT(maxDifference(sweep, point), kFloatTolerance) << intervals << " x " << positions;
+        EXPECT_EQ(sweep.stats.counts.at("sweep_unswept_fragments"), 0);
+        if (positions > 1) EXPECT_GT(sweep.stats.counts.at("sweep_spilled_pixels"), 0) << "8-pixel tiles";
+    }
+}
+
+// Where one surface slides over another, what is hidden changes within an interval and a sweep keeps
+// visibility as it was at the re-clip: the error against the exact coverage (the oracle of
+// ClippedRenderer.TranslatingQuadConverges...) falls as re-clips are added, and auto picks enough.
+TEST(SweepIntegration, OcclusionErrorFallsWithReclips) {
+    const glm::dvec2 v(11.4, 3.7);
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.scene.objects.push_back(rasterQuad(1.0, 1.0, 31.0, 31.0, 10.0));
+    job.scene.objects.push_back(movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v));
+    job.render.subframes = 48;
+    const RenderResult reference = renderFrame(job, 0);  // point subframes, 48 times
+    std::vector<double> errors;
+    for (int intervals : {1, 4, 16}) errors.push_back(maxDifference(renderFrame(sweepJob(job, v, intervals, 48 / intervals), 0), reference));
+    EXPECT_GT(errors[0], 0.1) << "one re-clip for 12 px of relative motion must show it";
+    EXPECT_LT(errors[1], errors[0]);
+    EXPECT_LT(errors[2], errors[1]);
+    job.render.subframes = 0;
+    job.render.time_integration = TimeIntegration::Sweep;
+    const RenderResult automatic = renderFrame(job, 0);
+    // Relative motion 11.99 px: auto re-clips at least every pixel of it.
+    EXPECT_GE(automatic.stats.counts.at("subframes_max_per_tile"), 12);
+}
+
+// Surfaces outside the film at a re-clip sweep into it: the film-edge tiles re-clip past the edge.
+TEST(SweepIntegration, SurfacesSweepInAcrossTheFilmEdge) {
+    const glm::dvec2 v(-9.0, 5.0);
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.scene.objects.push_back(movingQuad(26.0, -6.0, 38.0, 20.0, 6.0, v));
+    job.render.subframes = 8;
+    const RenderResult point = renderFrame(job, 0);
+    const RenderResult sweep = renderFrame(sweepJob(job, v, 1, 8), 0);
+    EXPECT_LT(maxDifference(sweep, point), kFloatTolerance);
+}
+
+TEST(SweepIntegration, BitIdenticalForOneAndTwoThreads) {
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.render.time_integration = TimeIntegration::Sweep;
+    job.render.subframes = 2;  // few re-clips, so fragments sweep across tile borders
+    Material checker;
+    checker.texture.kind = Texture::Kind::Checker;
+    checker.texture.scale = 0.3;
+    job.scene.materials.push_back(checker);
+    Object back = rasterQuad(0.5, 0.5, 31.5, 31.5, 10.0);
+    back.material = 1;
+    job.scene.objects.push_back(back);
+    job.scene.objects.push_back(movingQuad(4.0, 8.0, 12.0, 20.0, 4.0, {9.0, 5.0}));
+    std::vector<RenderResult> results;
+    for (int threads : {1, 2}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        results.push_back(renderFrame(job, 0));
+    }
+    for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
+        EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
+    EXPECT_GT(results[0].stats.counts.at("sweep_spilled_pixels"), 0);
+}
+
+}  // namespace clipblur
