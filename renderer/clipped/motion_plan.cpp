@@ -114,15 +114,19 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             const auto near = [&](const glm::dvec2& q) {
                 return q.x >= t.x0 - pad && q.x <= t.x1 + pad && q.y >= t.y0 - pad && q.y <= t.y1 + pad;
             };
-            RasterBox displacements;
+            // Relative motion of what is near the tile at the segment's start, and of what is near it at
+            // the end (one group would mix surfaces that pass the tile at different times).
+            RasterBox at_start, at_end;
             double deviation = 0.0;
             for (const FragmentRef& ref : refs) {
                 const FragmentMotion& fm = motion[ref.layer][ref.index];
                 if (fm.crosses_near) continue;
                 deviation = std::max(deviation, fm.chord_deviation);
-                if (near(fm.start) || near(fm.end)) displacements.expand(fm.end - fm.start);
+                if (near(fm.start)) at_start.expand(fm.end - fm.start);
+                if (near(fm.end)) at_end.expand(fm.end - fm.start);
             }
-            const double relative = displacements.empty() ? 0.0 : glm::length(displacements.hi - displacements.lo);
+            const auto spread = [](const RasterBox& b) { return b.empty() ? 0.0 : glm::length(b.hi - b.lo); };
+            const double relative = std::max(spread(at_start), spread(at_end));
             constexpr double kChordTolerance = 0.1;  // px
             p.count = subframeCount(std::max(relative, std::sqrt(deviation / kChordTolerance)), max_subframes,
                                     &p.capped);

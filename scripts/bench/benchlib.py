@@ -79,6 +79,19 @@ def ladder_overrides(method, rung):
     return o
 
 
+# Sweep integration's ladder refines re-clips and positions together: rung r has r re-clips per shutter
+# segment and positions SWEEP_SPACING_1 / r pixels apart, so each rung halves both error sources.
+SWEEP_SPACING_1 = 8.0
+
+
+def sweep_overrides(rung):
+    o = {"render.method": "clipped", "render.time_integration": "sweep"}
+    if rung != "auto":
+        o.update({"render.subframes": rung, "render.sweep_spacing": SWEEP_SPACING_1 / int(rung),
+                  "render.max_subframes": max(256, int(rung))})
+    return o
+
+
 def render(clipblur, config, overrides, image, threads=0):
     """Renders one frame; returns the stats JSON as a dict."""
     image = Path(image)

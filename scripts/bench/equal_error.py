@@ -5,11 +5,13 @@ disocclusion scene, at 1280x720):
 
   1. stochastic at 256 spp twice, with seeds s1 and s2: the time, and e256, the error one such render
      has against the exact image;
-  2. clipped on the subframe ladder 1, 2, 4, ... until its error is at most e256 (or --max-rung), and
-     `auto`: time, subframes, fragments per subframe, peak memory and the error e_c of each rung;
-  3. clipped's time at e256, interpolated in log-log along its ladder, and the ratio
+  2. per clipped variant (--methods): `clipped`, the paper's point subframes on the ladder 1, 2, 4, ...
+     subframes, and `sweep`, sweep integration with rung r re-clips and positions 8/r px apart; each
+     until its error is at most e256 (or --max-rung), and `auto`: time, subframes, fragments per
+     subframe, peak memory and the error e_c of each rung;
+  3. each variant's time at e256, interpolated in log-log along its ladder, and the ratio
      (mean stochastic 256 spp time) / (that time); issue 5's goal is a ratio of at least 5;
-  4. with --threads-check on: the clipped rung that reaches e256 (or `auto`) and stochastic 256 spp
+  4. with --threads-check on: each variant's rung that reaches e256 (or `auto`) and stochastic 256 spp
      at 1 and at 2 threads; the speed-up t1 / t2 (goal for clipped: at least 1.8), and whether the two
      images are bit-identical (they must be: random streams never depend on the thread count).
 
@@ -61,6 +63,9 @@ DEFAULT_SCENES = ["table1_spin", "table1_pan", "table1_spin_pan", "table1_recede
 SPP = 256
 RATIO_GOAL = 5.0
 THREAD_GOAL = 1.8
+# The clipped variants the ladders run: the paper's point subframes (rung = subframes) and sweep
+# integration (rung = re-clips, with positions benchlib.SWEEP_SPACING_1 / rung pixels apart).
+METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "sweep": benchlib.sweep_overrides}
 # Both seeds differ from benchlib.REFERENCE_SEED and from each other: independent sample streams.
 DEFAULT_SEEDS = (1001, 2002)
 
@@ -159,38 +164,41 @@ def measure_scene(clipblur, scene, args, out, log=print):
     while n <= args.max_rung:
         rungs.append(n)
         n *= 2
-    reaching = None
-    for rung in rungs + ["auto"]:
-        if rung != "auto" and reaching is not None:
-            continue
-        o = dict(base, **benchlib.ladder_overrides("clipped", rung))
-        image = folder / f"clipped_{rung}.exr"
-        stats = benchlib.render(clipblur, config, o, image, args.threads)
-        e, se, noise = pair.clipped_error(image)
-        rw = row(scene, "clipped", "clipped", rung, "", args.threads, stats, args, image, e, se, noise)
-        rows.append(rw)
-        log(f"  clipped {str(rung):>5s}  {rw['seconds']:8.3f} s  subframes {rw['subframes_total']} "
-            f"(max/tile {rw['subframes_max_per_tile']})  error {'<= ' if noise else ''}{e:.4g}")
-        if rung != "auto" and e <= pair.e256:
-            reaching = rung
-
-    clipped = [rw for rw in rows if rw["role"] == "clipped"]
-    t_clipped = benchlib.time_to_reach([(rw["seconds"], rw["error"]) for rw in clipped], pair.e256)
-    result = {"scene": scene, "t_stochastic": t_stochastic, "e256": pair.e256, "e256_sq_se": pair.e256_sq_se,
-              "t_clipped": t_clipped, "ratio": t_stochastic / t_clipped if t_clipped else None,
-              "reaching": reaching, "best_error": min(rw["error"] for rw in clipped),
-              "auto": next(rw for rw in clipped if rw["param"] == "auto")}
+    result = {"scene": scene, "t_stochastic": t_stochastic, "e256": pair.e256, "e256_sq_se": pair.e256_sq_se}
+    for method in args.methods:
+        overrides = METHODS[method]
+        reaching = None
+        for rung in rungs + ["auto"]:
+            if rung != "auto" and reaching is not None:
+                continue
+            o = dict(base, **overrides(rung))
+            image = folder / f"{method}_{rung}.exr"
+            stats = benchlib.render(clipblur, config, o, image, args.threads)
+            e, se, noise = pair.clipped_error(image)
+            rw = row(scene, method, "clipped", rung, "", args.threads, stats, args, image, e, se, noise)
+            rows.append(rw)
+            log(f"  {method} {str(rung):>5s}  {rw['seconds']:8.3f} s  subframes {rw['subframes_total']} "
+                f"(max/tile {rw['subframes_max_per_tile']})  error {'<= ' if noise else ''}{e:.4g}")
+            if rung != "auto" and e <= pair.e256:
+                reaching = rung
+        ladder = [rw for rw in rows if rw["role"] == method]
+        t = benchlib.time_to_reach([(rw["seconds"], rw["error"]) for rw in ladder], pair.e256)
+        result[method] = {"t": t, "ratio": t_stochastic / t if t else None, "reaching": reaching,
+                          "best_error": min(rw["error"] for rw in ladder),
+                          "auto": next(rw for rw in ladder if rw["param"] == "auto")}
 
     if args.threads_check == "on":
-        check_rung = reaching if reaching is not None else "auto"
-        for method, param, extra in (("clipped", check_rung, {}), ("stochastic", SPP, {"render.seed": args.seeds[0]})):
-            o = dict(base, **benchlib.ladder_overrides(method, param), **extra)
+        checks = [(m, METHODS[m], result[m]["reaching"] or "auto") for m in args.methods]
+        checks.append(("stochastic", lambda p: dict(benchlib.ladder_overrides("stochastic", p),
+                                                    **{"render.seed": args.seeds[0]}), SPP))
+        for method, overrides, param in checks:
+            o = dict(base, **overrides(param))
             timed = {}
             for threads in (1, 2):
                 image = folder / "threads" / f"{method}_{param}_t{threads}.exr"
                 stats = benchlib.render(clipblur, config, o, image, threads)
-                timed[threads] = row(scene, f"{method}_threads", method, param, extra.get("render.seed", ""),
-                                     threads, stats, args, image)
+                timed[threads] = row(scene, f"{method}_threads", method, param,
+                                     args.seeds[0] if method == "stochastic" else "", threads, stats, args, image)
             identical = benchlib.image_error(timed[1]["image"], timed[2]["image"])["max_abs"] == 0.0
             for rw in timed.values():
                 rw["identical_across_threads"] = identical
@@ -208,43 +216,47 @@ def fmt(x, spec=".3f"):
 
 
 def summarise(results, rows):
-    lines = [f"| scene | stochastic {SPP} spp s (mean of 2) | e256 | clipped s at e256 | ratio (goal >= {RATIO_GOAL:g}) "
+    lines = [f"| scene | method | stochastic {SPP} spp s (mean of 2) | e256 | clipped s at e256 | ratio (goal >= {RATIO_GOAL:g}) "
              "| first rung <= e256 | auto: max subframes/tile | auto s | auto error |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for r in results:
-        a = r["auto"]
-        if r["t_clipped"] is None:
-            t_cell, ratio_cell = f"not reached (best error {r['best_error']:.4g})", "-"
-        else:
-            ok = "met" if r["ratio"] >= RATIO_GOAL else "not met"
-            t_cell, ratio_cell = f"{r['t_clipped']:.3f}", f"{r['ratio']:.3g} ({ok})"
         rel = f" (SE of e256^2 {r['e256_sq_se'] / r['e256'] ** 2:.1%})" if r["e256"] > 0 else ""
-        lines.append(f"| {r['scene']} | {r['t_stochastic']:.3f} | {r['e256']:.4g}{rel} | {t_cell} | {ratio_cell} | "
-                     f"{fmt(r['reaching'], '')} | {a['subframes_max_per_tile']} | {a['seconds']:.3f} | "
-                     f"{'<= ' if a['within_noise'] else ''}{a['error']:.4g} |")
+        for method in METHODS:
+            m = r.get(method)
+            if not m:
+                continue
+            a = m["auto"]
+            if m["t"] is None:
+                t_cell, ratio_cell = f"not reached (best error {m['best_error']:.4g})", "-"
+            else:
+                ok = "met" if m["ratio"] >= RATIO_GOAL else "not met"
+                t_cell, ratio_cell = f"{m['t']:.3f}", f"{m['ratio']:.3g} ({ok})"
+            lines.append(f"| {r['scene']} | {method} | {r['t_stochastic']:.3f} | {r['e256']:.4g}{rel} | {t_cell} | "
+                         f"{ratio_cell} | {fmt(m['reaching'], '')} | {a['subframes_max_per_tile']} | {a['seconds']:.3f} | "
+                         f"{'<= ' if a['within_noise'] else ''}{a['error']:.4g} |")
     text = "\n".join(lines) + "\n"
 
-    if any("clipped_threads" in r for r in results):
-        lines = [f"| scene | clipped rung | 1 thread s | 2 threads s | speed-up (goal >= {THREAD_GOAL:g}) | "
-                 f"stochastic {SPP} spp 1 thread s | 2 threads s | speed-up | images identical (clipped, stochastic) |",
-                 "|---|---|---|---|---|---|---|---|---|"]
+    if any("stochastic_threads" in r for r in results):
+        lines = [f"| scene | method | rung | 1 thread s | 2 threads s | speed-up (goal >= {THREAD_GOAL:g}) | "
+                 "images identical |", "|---|---|---|---|---|---|---|"]
         for r in results:
-            c, s = r.get("clipped_threads"), r.get("stochastic_threads")
-            if not c:
-                continue
-            ok = "met" if c["speedup"] >= THREAD_GOAL else "not met"
-            lines.append(f"| {r['scene']} | {c['param']} | {c['t1']:.3f} | {c['t2']:.3f} | {c['speedup']:.2f} ({ok}) | "
-                         f"{s['t1']:.3f} | {s['t2']:.3f} | {s['speedup']:.2f} | {c['identical']}, {s['identical']} |")
+            for method in list(METHODS) + ["stochastic"]:
+                c = r.get(f"{method}_threads")
+                if not c:
+                    continue
+                ok = "" if method == "stochastic" else " (met)" if c["speedup"] >= THREAD_GOAL else " (not met)"
+                lines.append(f"| {r['scene']} | {method} | {c['param']} | {c['t1']:.3f} | {c['t2']:.3f} | "
+                             f"{c['speedup']:.2f}{ok} | {c['identical']} |")
         text += "\nThread scaling:\n\n" + "\n".join(lines) + "\n"
 
     lines = ["| scene | method | param | s | subframes total | max/tile | fragments per subframe | peak MiB | error |",
              "|---|---|---|---|---|---|---|---|---|"]
     for rw in rows:
-        if rw["role"] not in ("stochastic_1", "stochastic_2", "clipped"):
+        if rw["role"] not in ("stochastic_1", "stochastic_2", *METHODS):
             continue
         param = f"{rw['param']} (seed {rw['seed']})" if rw["method"] == "stochastic" else str(rw["param"])
         err = ("e256 " if rw["method"] == "stochastic" else "<= " if rw["within_noise"] else "") + f"{rw['error']:.4g}"
-        lines.append(f"| {rw['scene']} | {rw['method']} | {param} | {rw['seconds']:.3f} | {fmt(rw['subframes_total'], '')} | "
+        lines.append(f"| {rw['scene']} | {rw['role'] if rw['method'] != 'stochastic' else 'stochastic'} | {param} | {rw['seconds']:.3f} | {fmt(rw['subframes_total'], '')} | "
                      f"{fmt(rw['subframes_max_per_tile'], '')} | {fmt(rw['fragments_per_subframe'], '.4g')} | "
                      f"{rw['peak_memory_mb']:.0f} | {err} |")
     text += ("\nEvery render (fragments per subframe: reclip_fragments / subframes_total, i.e. per tile and "
@@ -260,6 +272,7 @@ def main():
     ap.add_argument("--height", type=int, default=720)
     ap.add_argument("--seeds", default=",".join(map(str, DEFAULT_SEEDS)), help="the two stochastic seeds, s1,s2")
     ap.add_argument("--max-rung", type=int, default=1024, help="largest fixed subframe count of the clipped ladder")
+    ap.add_argument("--methods", default="clipped,sweep", help="clipped variants to ladder: clipped, sweep")
     ap.add_argument("--threads", type=int, default=0, help="render threads of the main runs (0: all cores)")
     ap.add_argument("--threads-check", choices=("on", "off"), default="on",
                     help="also time the rung reaching e256 and stochastic at 1 and 2 threads")
@@ -272,6 +285,9 @@ def main():
         args.seeds = []
     if len(args.seeds) != 2 or args.seeds[0] == args.seeds[1]:
         ap.error("--seeds needs two different integers, e.g. 1001,2002")
+    args.methods = [m for m in args.methods.split(",") if m]
+    if not args.methods or any(m not in METHODS for m in args.methods):
+        ap.error(f"--methods takes a comma-separated subset of {', '.join(METHODS)}")
 
     try:
         clipblur = benchlib.find_clipblur(args.clipblur)
@@ -299,7 +315,8 @@ def main():
                 f.write(f"Equal-error benchmark, {meta['date']}, git {meta['git'][:12]}, {args.width}x{args.height}, "
                         f"{meta['machine']['nproc']} x {meta['machine']['cpu_model']}\n\n{summary}")
             with open(out / "run.json", "w") as f:
-                json.dump(dict(meta, results=[{k: v for k, v in r.items() if k != "auto"} for r in results]),
+                json.dump(dict(meta, results=[{k: ({kk: vv for kk, vv in v.items() if kk != "auto"} if k in METHODS else v)
+                                                for k, v in r.items()} for r in results]),
                           f, indent=2, default=str)
         print("\n" + summary)
         print(f"wrote {out / 'results.csv'}, {out / 'summary.md'}, {out / 'run.json'}")

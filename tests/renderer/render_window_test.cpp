@@ -15,10 +15,14 @@ namespace {
 
 // configs/default.yaml (a ball flying across a textured floor, a spinning box, a panning camera, every
 // AOV) at an odd size whose 32-pixel render tiles do not line up with any shard border.
+// "clipped_sweep" is clipped with sweep integration, whose fragments leave part of their coverage in other
+// tiles' pixels: a shard must also re-clip the tiles next to it.
 RenderJob smallMovingJob(const std::string& method) {
+    const bool sweep = method == "clipped_sweep";
     return loadJob(std::string(CLIPBLUR_SOURCE_DIR) + "/configs/default.yaml",
-                   {"film.width=67", "film.height=41", "render.method=" + method, "render.samples=3",
-                    "render.max_subframes=2", "render.audit=true"});
+                   {"film.width=67", "film.height=41", "render.method=" + std::string(sweep ? "clipped" : method),
+                    "render.samples=3", "render.max_subframes=2", "render.audit=true",
+                    std::string("render.time_integration=") + (sweep ? "sweep" : "subframes")});
 }
 
 // Every channel of `part` equals the same pixels of `whole` bit for bit (memcmp, so NaN and the
@@ -81,7 +85,7 @@ TEST_P(WindowedMethod, ShardWindowsEqualTheWholeRender) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, WindowedMethod, ::testing::Values("stochastic", "clipped", "accumulation"),
+INSTANTIATE_TEST_SUITE_P(Methods, WindowedMethod, ::testing::Values("stochastic", "clipped", "clipped_sweep", "accumulation"),
                          [](const auto& info) { return info.param; });
 
 }  // namespace clipblur

@@ -57,6 +57,8 @@ render:
   max_subframes: 64
   path_method: rk4
   ode_steps: 5
+  time_integration: sweep
+  sweep_spacing: 2.5
   visibility_rays: 2
   shadows: true
   seed: 18446744073709551615
@@ -96,7 +98,7 @@ const char* kJsonJob = R"({
      "deformation": [{"time": 0, "obj": "tri.obj"}, {"time": 1, "obj": "tri_moved.obj"}]}
   ],
   "render": {"method": "stochastic", "samples": 8, "subframes": 12, "max_subframes": 64, "path_method": "rk4",
-             "ode_steps": 5, "visibility_rays": 2, "shadows": true, "seed": 18446744073709551615, "tile_size": 16},
+             "ode_steps": 5, "time_integration": "sweep", "sweep_spacing": 2.5, "visibility_rays": 2, "shadows": true, "seed": 18446744073709551615, "tile_size": 16},
   "output": {"path": "out.exr", "half": false, "png_preview": true, "aovs": ["motion", "depth"], "stats": "s.json"}
 }
 )";
@@ -171,6 +173,8 @@ TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
         EXPECT_EQ(job->render.max_subframes, 64);
         EXPECT_EQ(job->render.path_method, PathMethod::RK4);
         EXPECT_EQ(job->render.ode_steps, 5);
+        EXPECT_EQ(job->render.time_integration, TimeIntegration::Sweep);
+        EXPECT_EQ(job->render.sweep_spacing, 2.5);
         EXPECT_EQ(job->render.visibility_rays, 2);
         EXPECT_TRUE(job->render.shadows);
         EXPECT_EQ(job->render.seed, 18446744073709551615ull);

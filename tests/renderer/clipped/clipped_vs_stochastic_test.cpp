@@ -95,6 +95,13 @@ TEST_P(AgainstStochastic, DifferenceIsExplainedBySamplingNoise) {
     // misplaced surface, which is off by 0.2-0.8 in its pixels.
     EXPECT_LT(max_auto, 0.1);
     EXPECT_LT(ratio, 1.5) << "variance " << variance;
+    // Sweep integration at auto: the same pixel rule for positions, fewer re-clips; held to the same
+    // bounds as point subframes at auto.
+    const RenderResult sweep = renderFrame(load({"render.method=clipped", "render.time_integration=sweep"}), 0);
+    const double rmse_sweep = std::sqrt(meanSquaredDifference(sweep, averaged(s1, s2)));
+    RecordProperty("rmse_sweep", std::to_string(rmse_sweep));
+    EXPECT_LT(rmse_sweep, 0.01) << "re-clips " << sweep.stats.counts.at("subframes_max_per_tile");
+    EXPECT_LT(maxAbsDifference(sweep, averaged(s1, s2)), 0.1);
 }
 
 INSTANTIATE_TEST_SUITE_P(Configs, AgainstStochastic,
