@@ -105,30 +105,58 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
         } else if (!sweep) {
             p.count = subframeCount(p.max_sweep_pixels, max_subframes, &p.capped);
         } else {
-            // Sweep integration moves each fragment along its own displacement between re-clips, exact
-            // for the motion that surfaces near each other share. What is left to subframes is how far
-            // they move relative to each other (what they hide changes: at most a pixel per subframe,
-            // as eq. 24) and how far a path leaves its chord (it shrinks as the square of the count).
+            // Sweep integration moves each fragment along its own path between re-clips, so what one
+            // surface does smoothly (a pan, a roll, a dolly) needs no re-clip. What is left to subframes is
+            // how far different objects move relative to each other (what one hides of another changes:
+            // at most a pixel per subframe, as eq. 24), and how far a path leaves the parabola a sweep
+            // follows (a path's deviation from its chord over the segment, which for smooth paths the
+            // parabola's error falls below as the cube of the count). Self-occlusion inside one object is
+            // left to curvature, deformation (below) and shutter segments.
             const Tile t = grid.tile(index);
             const double pad = 0.5 * size;
             const auto near = [&](const glm::dvec2& q) {
                 return q.x >= t.x0 - pad && q.x <= t.x1 + pad && q.y >= t.y0 - pad && q.y <= t.y1 + pad;
             };
-            // Relative motion of what is near the tile at the segment's start, and of what is near it at
-            // the end (one group would mix surfaces that pass the tile at different times).
-            RasterBox at_start, at_end;
+            // Per object, the displacements of what is near the tile at the segment's start, and of what is
+            // near it at the end (one group would mix surfaces that pass the tile at different times).
+            std::vector<std::pair<std::uint32_t, RasterBox>> at_start, at_end;
+            const auto add = [](std::vector<std::pair<std::uint32_t, RasterBox>>& group, std::uint32_t object,
+                                const glm::dvec2& d) {
+                for (auto& [o, box] : group)
+                    if (o == object) return box.expand(d);
+                group.push_back({object, RasterBox{d, d}});
+            };
             double deviation = 0.0;
             for (const FragmentRef& ref : refs) {
                 const FragmentMotion& fm = motion[ref.layer][ref.index];
                 if (fm.crosses_near) continue;
                 deviation = std::max(deviation, fm.chord_deviation);
-                if (near(fm.start)) at_start.expand(fm.end - fm.start);
-                if (near(fm.end)) at_end.expand(fm.end - fm.start);
+                const std::uint32_t object = (*layers.triangles[ref.layer])[ref.index].object;
+                if (near(fm.start)) add(at_start, object, fm.end - fm.start);
+                if (near(fm.end)) add(at_end, object, fm.end - fm.start);
             }
-            const auto spread = [](const RasterBox& b) { return b.empty() ? 0.0 : glm::length(b.hi - b.lo); };
+            // Bounded by the spread of all their displacements once two objects meet.
+            const auto spread = [](const std::vector<std::pair<std::uint32_t, RasterBox>>& group) {
+                if (group.size() < 2) return 0.0;
+                RasterBox all;
+                for (const auto& [o, box] : group) {
+                    all.expand(box.lo);
+                    all.expand(box.hi);
+                }
+                return glm::length(all.hi - all.lo);
+            };
             const double relative = std::max(spread(at_start), spread(at_end));
             constexpr double kChordTolerance = 0.1;  // px
-            p.count = subframeCount(std::max(relative, std::sqrt(deviation / kChordTolerance)), max_subframes,
+            // Fragments move rigidly along their centroid's path, so a surface that stretches or turns under
+            // them (a dolly, a roll) is followed to within its displacement gradient times a fragment's
+            // size (1 px) per subframe; keep that at kChordTolerance. The gradient is taken as one object's
+            // displacement spread over the near region's diagonal.
+            double gradient = 0.0;
+            for (const auto* group : {&at_start, &at_end})
+                for (const auto& [o, box] : *group)
+                    gradient = std::max(gradient, glm::length(box.hi - box.lo) / (std::sqrt(2.0) * (size + 2.0 * pad)));
+            p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), gradient / kChordTolerance}),
+                                    max_subframes,
                                     &p.capped);
         }
     });

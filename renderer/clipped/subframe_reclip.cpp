@@ -1,5 +1,6 @@
 #include "renderer/clipped/subframe_reclip.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -68,17 +69,30 @@ void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdeProp
     if (n == 4) addScreenTriangle(snapshot, {w[0], w[2], w[3]}, {t.object, t.triangle, {b[0], b[2], b[3]}}, ref, weight, scratch);
 }
 
-// How far the surface point seen at the fragment's centroid moves in the image over the interval, from
-// its exact positions at the interval's ends (sample: the centroid on the source screen triangle).
+// The path of the surface point seen at the fragment's centroid `at` over the interval: its exact
+// positions at the interval's ends and `at` itself (sample: the centroid on the source screen triangle).
 // Nullopt when the point is behind the camera at either end.
-std::optional<glm::dvec2> sweepDisplacement(const Scene& scene, const SweepInterval& sweep,
-                                            const SourceTriangle& source, const SourceSample& sample) {
+std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& sweep, const SourceTriangle& source,
+                                   const SourceSample& sample, const glm::dvec2& at) {
     glm::dvec3 bary(0.0);
     for (int i = 0; i < 3; ++i) bary += sample.bary[i] * source.bary[i];
     const MeshPoint point{source.object, source.triangle, bary};
     const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
     if (a.behind || b.behind) return std::nullopt;
-    return b.raster - a.raster;
+    return SweepPath{b.raster - a.raster, 0.5 * (a.raster + b.raster) - at};
+}
+
+// Adds a piece's colour difference, merged into an equal piece already listed (both frames' copies of
+// a surface are usually cut along the same texture edges).
+void addTextured(const ConvexPolygon& piece, const glm::dvec3& colour,
+                 std::vector<std::pair<ConvexPolygon, glm::dvec3>>& textured) {
+    for (auto& [polygon, c] : textured) {
+        if (polygon.n == piece.n && std::equal(piece.v.begin(), piece.v.begin() + piece.n, polygon.v.begin())) {
+            c += colour;
+            return;
+        }
+    }
+    textured.push_back({piece, colour});
 }
 
 }  // namespace
@@ -128,9 +142,15 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     }
                     if (sweep && scratch.pieces.size() > 1 && area > 0.0) {
                         // Swept pieces keep their own colours: the fragment's mean colour smeared over
-                        // pixels would move a texture edge inside it to the fragment's centre.
-                        for (const ShadedPiece& piece : scratch.pieces)
-                            scratch.textured.push_back({piece.polygon, m * piece.colour * (fragment.area / area)});
+                        // pixels would move a texture edge inside it to the fragment's centre. Footprints
+                        // add up over pieces, so the whole fragment carries the largest piece's colour and
+                        // the other pieces only their difference to it.
+                        const double scale = m * fragment.area / area;
+                        const auto base = std::max_element(scratch.pieces.begin(), scratch.pieces.end(),
+                                                           [](const auto& a, const auto& b) { return a.area < b.area; });
+                        colour += scale * base->colour;
+                        for (auto piece = scratch.pieces.begin(); piece != scratch.pieces.end(); ++piece)
+                            if (piece != base) addTextured(piece->polygon, scale * (piece->colour - base->colour), scratch.textured);
                     } else if (area > 0.0) {
                         colour += m * sum / area;
                     }
@@ -151,13 +171,13 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     add(out.index(x, y), fragment.area);
                     continue;
                 }
-                const std::optional<glm::dvec2> d =
-                    sampled ? sweepDisplacement(scene, *sweep, scratch.sources[first], sample) : std::nullopt;
+                const std::optional<SweepPath> path =
+                    sampled ? sweepPath(scene, *sweep, scratch.sources[first], sample, c) : std::nullopt;
                 int positions = 1;
-                glm::dvec2 shift(0.0);
-                if (d && glm::length(*d) <= sweep->reach) {
-                    shift = *d;
-                    if (shift != glm::dvec2(0.0)) positions = sweep->positions;
+                SweepPath shift;
+                if (path && path->reach() <= 0.5 * sweep->reach) {
+                    shift = *path;
+                    if (shift.chord != glm::dvec2(0.0) || shift.bend != glm::dvec2(0.0)) positions = sweep->positions;
                 } else {
                     ++stats.sweep_unswept;
                 }

@@ -50,18 +50,18 @@ struct TileSums {
 };
 
 // Sweep integration (render.time_integration: sweep): the subframe at time t stands for the interval
-// [begin, end] around it. Each re-clipped fragment is moved along its own displacement over the interval
-// (where the surface point under its centroid is at the interval's ends) and placed at `positions`
+// [begin, end] around it. Each re-clipped fragment is moved along the path of the surface point under its
+// centroid (the parabola through its exact positions at begin, t and end) and placed at `positions`
 // equally spaced times, the same times for every fragment of the segment: fragments sampled at different
 // times would open cracks and overlaps along their shared edges. Visibility stays as resolved at t, so for
-// what translates in the image without changing what it hides this equals point subframes at all those
-// times; that is why re-clips can be spaced by relative motion and curvature alone.
+// what moves in the image without changing what it hides this equals point subframes at all those times;
+// that is why re-clips can be spaced by relative motion and path curvature alone.
 struct SweepInterval {
     const MotionSnapshot* begin = nullptr;
     const MotionSnapshot* end = nullptr;
     int positions = 1;
-    // A displacement longer than this (px) is not swept: the fragment stays a point sample at t. The tile
-    // plan bounds every displacement by it; only paths it could not measure (camera plane) exceed it.
+    // A path reaching farther than reach / 2 (px) from t is not swept: the fragment stays a point sample
+    // at t. The tile plan bounds every path by it; only paths it could not measure (camera plane) exceed it.
     double reach = 0.0;
     Tile resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
     Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1

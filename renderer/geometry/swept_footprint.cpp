@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 namespace clipblur {
 
@@ -111,13 +112,15 @@ void polygonFootprint(const SmallPolygon& p, double scale, std::vector<PixelWeig
 
 }  // namespace
 
-void sweptFootprint(const ConvexPolygon& q, const glm::dvec2& d, int positions, std::vector<PixelWeight>& out) {
+double SweepPath::reach() const { return 0.5 * glm::length(chord) + glm::length(bend); }
+
+void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions, std::vector<PixelWeight>& out) {
     if (q.degenerate() || q.n > kMaxStoredVertices) {
         if (!q.degenerate()) {  // more vertices than stored fragments have: cut it into stored-size pieces
             thread_local std::vector<ConvexPolygon> parts;
             parts.clear();
             splitToCapacity(q, kMaxStoredVertices, parts);
-            for (const ConvexPolygon& part : parts) sweptFootprint(part, d, positions, out);
+            for (const ConvexPolygon& part : parts) sweptFootprint(part, path, positions, out);
         }
         return;
     }
@@ -126,7 +129,7 @@ void sweptFootprint(const ConvexPolygon& q, const glm::dvec2& d, int positions, 
     if (axisAlignedRectangle(q)) {
         const Bounds2 box = q.bounds();
         for (int k = 0; k < m; ++k) {
-            const glm::dvec2 shift = ((k + 0.5) / m - 0.5) * d;
+            const glm::dvec2 shift = path.at((k + 0.5) / m - 0.5);
             rectangleFootprint(box.lo + shift, box.hi + shift, scale, out);
         }
         return;
@@ -134,7 +137,7 @@ void sweptFootprint(const ConvexPolygon& q, const glm::dvec2& d, int positions, 
     SmallPolygon moved;
     moved.n = q.n;
     for (int k = 0; k < m; ++k) {
-        const glm::dvec2 shift = ((k + 0.5) / m - 0.5) * d;
+        const glm::dvec2 shift = path.at((k + 0.5) / m - 0.5);
         for (int i = 0; i < q.n; ++i) moved.v[i] = q.v[i] + shift;
         polygonFootprint(moved, scale, out);
     }

@@ -14,11 +14,23 @@ struct PixelWeight {
     double weight = 0.0;  // covered area, px^2
 };
 
-// The pixel coverage of a convex polygon q moving by d over an interval, averaged over `positions`
-// equally spaced times: q + s d at the midpoints s = (m + 1/2) / positions - 1/2, m = 0 .. positions-1,
-// so the positions are centred on q itself. Appends one entry per (position, pixel) with the area of that
-// position's piece in the pixel divided by `positions`; the weights sum to area(q). Axis-aligned
-// rectangles (most fragments inside a surface are whole or partial pixels) take a separable fast path.
-void sweptFootprint(const ConvexPolygon& q, const glm::dvec2& d, int positions, std::vector<PixelWeight>& out);
+// A translation over an interval, s in [-1/2, 1/2]: the parabola through offset 0 at s = 0 and the
+// offsets -chord/2 + bend and chord/2 + bend at the ends. Three exact positions of a point give it; the
+// straight chord alone would cut the corner of a curved path (a rolling camera) by `bend`.
+struct SweepPath {
+    glm::dvec2 chord{0.0};
+    glm::dvec2 bend{0.0};
+
+    glm::dvec2 at(double s) const { return s * chord + (4.0 * s * s) * bend; }
+    // Farthest offset from the start: |chord| / 2 + |bend| bounds it.
+    double reach() const;
+};
+
+// The pixel coverage of a convex polygon q moving along `path`, averaged over `positions` equally spaced
+// times, the midpoints s = (m + 1/2) / positions - 1/2, m = 0 .. positions-1. Appends one entry per
+// (position, pixel) with the area of that position's piece in the pixel divided by `positions`; the
+// weights sum to area(q). Axis-aligned rectangles (most fragments inside a surface are whole or partial
+// pixels) take a separable fast path.
+void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions, std::vector<PixelWeight>& out);
 
 }  // namespace clipblur

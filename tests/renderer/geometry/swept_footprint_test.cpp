@@ -15,9 +15,9 @@ namespace {
 
 using Weights = std::map<std::pair<int, int>, double>;
 
-Weights collect(const ConvexPolygon& q, glm::dvec2 d, int positions) {
+Weights collect(const ConvexPolygon& q, SweepPath path, int positions) {
     std::vector<PixelWeight> out;
-    sweptFootprint(q, d, positions, out);
+    sweptFootprint(q, path, positions, out);
     Weights w;
     for (const PixelWeight& p : out) w[{p.x, p.y}] += p.weight;
     return w;
@@ -63,27 +63,31 @@ TEST(SweptFootprint, UnitSquareMovingTwoPixelsIsATent) {
         return p;
     }();
     for (int m : {2, 3, 8, 9}) {
-        const Weights w = collect(square, {2.0, 0.0}, m);
+        const Weights w = collect(square, {{2.0, 0.0}, {0.0, 0.0}}, m);
         EXPECT_NEAR(w.at({3, 5}), m % 2 == 0 ? 0.5 : 0.5 + 0.5 / (m * m), 1e-12) << m;
         EXPECT_NEAR(w.at({2, 5}), w.at({4, 5}), 1e-12) << m;
         EXPECT_NEAR(w.at({2, 5}) + w.at({3, 5}) + w.at({4, 5}), 1.0, 1e-12) << m;
     }
 }
 
-// Seeded random fragments and displacements. (1) The weights sum to the fragment's area, and (2) at each
-// position the weights are the pixel areas of the shifted polygon, computed here by the test oracle's own
-// box clip (tests/support, no renderer code). (3) Many positions converge to the exact time-integrated
-// coverage (the oracle's breakpoint-exact integral) as the midpoint rule does: error O(1/M^2).
+// Seeded random fragments and paths. (1) The weights sum to the fragment's area, and (2) at each position
+// the weights are the pixel areas of the shifted polygon, computed here by the test oracle's own box clip
+// (tests/support, no renderer code), at the parabola's offset written out here from its definition.
+// (3) On a straight path many positions converge to the exact time-integrated coverage (the oracle's
+// breakpoint-exact integral) as the midpoint rule does: error O(1/M^2).
 TEST(SweptFootprint, MatchesIndependentClipAndConvergesToTheExactIntegral) {
     std::mt19937 rng(20261122);
     std::uniform_real_distribution<double> u(-3.0, 3.0);
     for (int trial = 0; trial < 200; ++trial) {
         const ConvexPolygon q = randomFragment(rng, glm::dvec2(10, 20));
         const glm::dvec2 d(u(rng), u(rng));
+        const glm::dvec2 bend = 0.2 * glm::dvec2(u(rng), u(rng));
         const std::vector<glm::dvec2> poly = vertices(q);
         const double area = testing::polygonArea(poly);
-        for (int m : {1, 3}) {
-            const Weights w = collect(q, d, m);
+        // Offsets 0 at s = 0 and -d/2 + bend, d/2 + bend at the ends: s d + 4 s^2 bend.
+        const auto offset = [&](double s) { return s * d + 4.0 * s * s * bend; };
+        for (int m : {1, 3, 4}) {
+            const Weights w = collect(q, {d, bend}, m);
             double total = 0.0;
             for (const auto& [pixel, weight] : w) total += weight;
             // Rounding of a few cuts and shoelace sums on coordinates ~20: far below 1e-12 px^2.
@@ -92,7 +96,7 @@ TEST(SweptFootprint, MatchesIndependentClipAndConvergesToTheExactIntegral) {
                 double expected = 0.0;
                 for (int k = 0; k < m; ++k) {
                     std::vector<glm::dvec2> moved = poly;
-                    for (glm::dvec2& p : moved) p += ((k + 0.5) / m - 0.5) * d;
+                    for (glm::dvec2& p : moved) p += offset((k + 0.5) / m - 0.5);
                     const glm::dvec2 lo(pixel.first, pixel.second);
                     expected += testing::polygonArea(testing::clipToBox(moved, lo, lo + 1.0)) / m;
                 }
@@ -102,7 +106,7 @@ TEST(SweptFootprint, MatchesIndependentClipAndConvergesToTheExactIntegral) {
         // translatingCoverage moves the polygon from p to p + v; ours is centred, so start at p - d/2.
         std::vector<glm::dvec2> start = poly;
         for (glm::dvec2& p : start) p -= 0.5 * d;
-        const Weights fine = collect(q, d, 400);
+        const Weights fine = collect(q, {d, glm::dvec2(0.0)}, 400);
         for (const auto& [pixel, weight] : fine) {
             const double exact = testing::translatingPixelCoverage(start, d, pixel.first, pixel.second);
             // Midpoint rule over a piecewise quadratic with kinks: error <= (slope jump) h^2 / 8 per kink,
