@@ -45,18 +45,22 @@ struct SmallPolygon {
     int n = 0;
 };
 
-// Keeps the part of p with sign * (coordinate `axis` - c) >= 0.
-void clipAxis(const SmallPolygon& p, int axis, double c, double sign, SmallPolygon& out) {
-    out.n = 0;
+// Splits p along the line coordinate `axis` = c into the part below (< c) and the part above, in one
+// pass: each vertex goes to its side, each crossing point (placed on the line exactly) to both.
+void splitAxis(const SmallPolygon& p, int axis, double c, SmallPolygon& below, SmallPolygon& above) {
+    below.n = 0;
+    above.n = 0;
     for (int i = 0; i < p.n; ++i) {
         const glm::dvec2& a = p.v[i];
         const glm::dvec2& b = p.v[i + 1 == p.n ? 0 : i + 1];
-        const double sa = sign * (a[axis] - c), sb = sign * (b[axis] - c);
-        if (sa >= 0.0) out.v[out.n++] = a;
+        const double sa = a[axis] - c, sb = b[axis] - c;
+        if (sa <= 0.0) below.v[below.n++] = a;
+        if (sa >= 0.0) above.v[above.n++] = a;
         if ((sa > 0.0 && sb < 0.0) || (sa < 0.0 && sb > 0.0)) {
             glm::dvec2 x = a + (sa / (sa - sb)) * (b - a);
             x[axis] = c;  // on the cut line exactly
-            out.v[out.n++] = x;
+            below.v[below.n++] = x;
+            above.v[above.n++] = x;
         }
     }
 }
@@ -70,7 +74,8 @@ double area(const SmallPolygon& p) {
     return 0.5 * std::abs(twice);
 }
 
-// Exact pixel pieces of a convex polygon: columns first, then rows.
+// Exact pixel pieces of a convex polygon: chopped into columns, each column into cells, one split per
+// cell boundary (a fragment, at most a pixel wide, needs at most one split per axis).
 void polygonFootprint(const SmallPolygon& p, double scale, std::vector<PixelWeight>& out) {
     glm::dvec2 lo = p.v[0], hi = p.v[0];
     for (int i = 1; i < p.n; ++i) {
@@ -81,27 +86,23 @@ void polygonFootprint(const SmallPolygon& p, double scale, std::vector<PixelWeig
     const int x1 = std::max(x0, static_cast<int>(std::ceil(hi.x)) - 1);
     const int y0 = static_cast<int>(std::floor(lo.y));
     const int y1 = std::max(y0, static_cast<int>(std::ceil(hi.y)) - 1);
-    SmallPolygon right, column, below, cell;
+    SmallPolygon rest[2], column, cells[2], cell;
+    const SmallPolygon* right = &p;
     for (int x = x0; x <= x1; ++x) {
-        const SmallPolygon* col = &p;
-        if (x > x0) {
-            clipAxis(*col, 0, x, 1.0, right);
-            col = &right;
-        }
+        const SmallPolygon* col = right;
         if (x < x1) {
-            clipAxis(*col, 0, x + 1.0, -1.0, column);
+            splitAxis(*right, 0, x + 1.0, column, rest[x & 1]);
             col = &column;
+            right = &rest[x & 1];
         }
         if (col->n < 3) continue;
+        const SmallPolygon* above = col;
         for (int y = y0; y <= y1; ++y) {
-            const SmallPolygon* c = col;
-            if (y > y0) {
-                clipAxis(*c, 1, y, 1.0, below);
-                c = &below;
-            }
+            const SmallPolygon* c = above;
             if (y < y1) {
-                clipAxis(*c, 1, y + 1.0, -1.0, cell);
+                splitAxis(*above, 1, y + 1.0, cell, cells[y & 1]);
                 c = &cell;
+                above = &cells[y & 1];
             }
             if (c->n < 3) continue;
             const double a = area(*c);
