@@ -142,9 +142,8 @@ struct Spill {
 // peak speed falling between the plan's samples), so they reach reach / 2 + 1 pixels past where they are
 // re-clipped. Tiles on the film edge also re-clip that far outside it, where nothing else would, because
 // surfaces there sweep into the film.
-SweepInterval sweepInterval(const Tile& tile, const SubframePlan& plan, int n, int film_w, int film_h, int positions) {
+SweepInterval sweepInterval(const Tile& tile, const SubframePlan& plan, int n, int film_w, int film_h) {
     SweepInterval s;
-    s.positions = positions;
     s.reach = 2.0 * plan.max_sweep_pixels / n + 1.0;
     const int apron = static_cast<int>(std::ceil(0.5 * s.reach)) + 1;
     s.resolve = tile;
@@ -225,18 +224,13 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             ctx.callbacks.progress(done, progress_total);
         }
     };
-    // Sweep positions per interval, shared by the whole segment: the fastest fragment moves about
-    // sweep_spacing pixels between positions (eq. 24's pixel rule, applied to positions, not re-clips).
-    int positions = 1;
-    if (sweeping) {
-        double fastest = 0.0;
-        int shared = 1;
-        for (const SubframePlan& p : plan.tiles) {
-            fastest = std::max(fastest, p.max_sweep_pixels);
-            shared = std::max(shared, p.count);
-        }
-        positions = subframeCount(fastest / shared / settings.sweep_spacing, settings.max_subframes);
-    }
+    // Sweep integration: all moving tiles share the intervals (planMotion) and, per interval, the positions.
+    int intervals = 1;
+    for (const SubframePlan& p : plan.tiles) intervals = std::max(intervals, p.count);
+    const std::vector<int> positions =
+        sweeping ? sweepPositions(scene, ctx.projection, layers, ts, te, intervals, settings.sweep_spacing,
+                                  settings.max_subframes)
+                 : std::vector<int>{};
     const DataWindow& window = ctx.window;
     const int film_w = scene.film.width, film_h = scene.film.height;
     // Sweep integration: what a tile's fragments leave in other tiles' pixels, added after all tiles in
@@ -256,7 +250,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             still_scene || (tile_plan.max_sweep_pixels == 0.0 && subframes == 0 && !settings.shadows);
         const int n = still_tile ? 0 : tile_plan.count;
         SweepInterval sweep;
-        if (sweeping && n > 0) sweep = sweepInterval(tile, tile_plan, n, film_w, film_h, positions);
+        if (sweeping && n > 0) sweep = sweepInterval(tile, tile_plan, n, film_w, film_h);
         const Tile reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
         if (!window.overlaps(reach.x0, reach.y0, reach.x1, reach.y1)) {
             progress();
@@ -277,6 +271,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 end.emplace(scene, ctx.projection, t + half);
                 interval.begin = &*begin;
                 interval.end = &*end;
+                interval.positions = positions[static_cast<std::size_t>(k)];
             }
             reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile,
                            sweeping ? &interval : nullptr, settings.audit, scratch,

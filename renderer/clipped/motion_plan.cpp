@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "scene/object_motion.h"
 
@@ -177,6 +179,38 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
     }
     for (const SubframePlan& p : plan.tiles) plan.capped_tiles += p.capped ? 1 : 0;
     return plan;
+}
+
+std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
+                                double t0, double t1, int count, double spacing, int max_positions) {
+    std::vector<MeshPoint> vertices;
+    for (const auto* triangles : layers.triangles) {
+        if (!triangles) continue;
+        for (const FragmentTriangle& t : *triangles)
+            for (const glm::dvec3& b : t.bary) vertices.push_back({t.object, t.triangle, b});
+    }
+    std::vector<int> positions(static_cast<std::size_t>(count), 1);
+    const double h = (t1 - t0) / count;
+    for (int k = 0; k < count; ++k) {
+        const MotionSnapshot begin(scene, projection, t0 + k * h), middle(scene, projection, t0 + (k + 0.5) * h),
+            end(scene, projection, t0 + (k + 1) * h);
+        // The max is exact in any order, so the reduction is deterministic.
+        const double extent = tbb::parallel_reduce(
+            tbb::blocked_range<std::size_t>(0, vertices.size(), 4096), 0.0,
+            [&](const tbb::blocked_range<std::size_t>& range, double farthest) {
+                for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                    const ProjectedPoint a = project(begin, scene, vertices[i]), m = project(middle, scene, vertices[i]),
+                                         b = project(end, scene, vertices[i]);
+                    if (a.behind || m.behind || b.behind) continue;
+                    const SweepPath path{b.raster - a.raster, 0.5 * (a.raster + b.raster) - m.raster};
+                    farthest = std::max(farthest, 2.0 * path.reach());
+                }
+                return farthest;
+            },
+            [](double x, double y) { return std::max(x, y); });
+        positions[static_cast<std::size_t>(k)] = subframeCount(extent / spacing, max_positions);
+    }
+    return positions;
 }
 
 }  // namespace clipblur

@@ -25,6 +25,15 @@ struct MotionPlan {
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
                       const FragmentLayers& layers, int subframes, int max_subframes, bool sweep);
 
+// Sweep integration: the positions of each of `count` equal intervals of [t0, t1], shared by every fragment
+// (equal times keep shared edges closed) and spaced so that no fragment vertex moves more than `spacing`
+// pixels between them during that interval: along the parabola through its positions at the interval's
+// ends and middle, as a swept fragment moves. An interval where things move slowly (the end of a dolly
+// away) gets fewer positions than one where they move fast. Vertices at or behind the camera plane are
+// left out (they are not swept, see SweepInterval::reach).
+std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
+                                double t0, double t1, int count, double spacing, int max_positions);
+
 // True when the camera keys give the same pose at every time of [t0, t1].
 bool cameraIsStill(const Camera& camera, double t0, double t1);
 

@@ -1,0 +1,77 @@
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "renderer/clipped/motion_plan.h"
+#include "support/motion_scenes.h"
+
+namespace clipblur {
+
+namespace {
+
+using testing::referenceProjection;
+using testing::stillCameraScene;
+using testing::triangleObject;
+using testing::addTransformKey;
+
+// The positions one interval needs by its definition, from the test's own slow projection: the farthest
+// a vertex gets from its interval-start position along the parabola through its exact positions at the
+// interval's start, middle and end (chord + twice the middle's distance from the chord's midpoint bounds
+// that parabola), over the spacing, rounded up.
+int expectedPositions(const Scene& scene, const Projection& projection, double t0, double t1, double spacing) {
+    double farthest = 0.0;
+    for (int v = 0; v < 3; ++v) {
+        glm::dvec3 b(0.0);
+        b[v] = 1.0;
+        const glm::dvec2 a = referenceProjection(scene, projection, 0, 0, b, t0).raster;
+        const glm::dvec2 m = referenceProjection(scene, projection, 0, 0, b, 0.5 * (t0 + t1)).raster;
+        const glm::dvec2 e = referenceProjection(scene, projection, 0, 0, b, t1).raster;
+        farthest = std::max(farthest, glm::length(e - a) + 2.0 * glm::length(0.5 * (a + e) - m));
+    }
+    return std::max(1, static_cast<int>(std::ceil(farthest / spacing)));
+}
+
+}  // namespace
+
+// A camera dollying away from a triangle: image speed falls as 1/depth^2, so the early intervals need
+// more sweep positions than the late ones. Each interval gets what its own motion needs (checked
+// against the independent projection), not what the fastest moment of the shutter needs.
+TEST(SweepPositions, FollowEachIntervalsOwnMotion) {
+    Scene scene = stillCameraScene(640, 360, 40.0);
+    scene.camera.keys.push_back({1.0, {0, 0, -10}, {0, 0, 1}, {0, 1, 0}});
+    scene.objects.push_back(triangleObject({-3, -2, 10}, {3, -1.5, 10}, {0.5, 2.5, 12}));
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
+    FragmentLayers layers;
+    layers.triangles = {&triangles, nullptr};
+
+    constexpr int kIntervals = 6;
+    constexpr double kSpacing = 0.75;
+    const std::vector<int> positions = sweepPositions(scene, projection, layers, 0.0, 1.0, kIntervals, kSpacing, 1000);
+    ASSERT_EQ(positions.size(), std::size_t(kIntervals));
+    for (int k = 0; k < kIntervals; ++k)
+        EXPECT_EQ(positions[k], expectedPositions(scene, projection, k / double(kIntervals), (k + 1) / double(kIntervals), kSpacing))
+            << "interval " << k;
+    // Depth doubles over the shutter, so the first interval moves about (z1 / z0)^2 = 4x the last.
+    EXPECT_GT(positions.front(), 3 * positions.back());
+}
+
+// Vertices behind the camera plane at any of an interval's three times are not swept, so they must not
+// set the count: a triangle reaching through the camera plane counts only its vertices in front.
+TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
+    Scene scene = stillCameraScene(640, 360, 40.0);
+    scene.objects.push_back(triangleObject({-1, -1, 5}, {1, -1, 5}, {0, 1, -3}));
+    addTransformKey(scene.objects[0], 0.0, {0, 0, 0});
+    addTransformKey(scene.objects[0], 1.0, {0.5, 0, 0});
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
+    FragmentLayers layers;
+    layers.triangles = {&triangles, nullptr};
+    // The two front vertices move 0.5 world units at depth 5: focal / 5 * 0.5 px, the same for both.
+    const double focal = 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
+    const std::vector<int> positions = sweepPositions(scene, projection, layers, 0.0, 1.0, 1, 1.0, 1000);
+    EXPECT_EQ(positions[0], static_cast<int>(std::ceil(focal / 5.0 * 0.5)));
+}
+
+}  // namespace clipblur
