@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Performance regression gate.
 
-Renders tests/perf/gate_scene.yaml with the clipped method and with a fixed stochastic baseline,
-alternating, several times, and checks against tests/perf/thresholds.json:
-  - the RATIO median(clipped seconds) / median(stochastic seconds) (both timed in this same job, so
-    a slower or busier machine moves both), with the generous slack stored in the file;
+Renders tests/perf/gate_scene.yaml with the clipped method (point subframes and sweep integration)
+and with a fixed stochastic baseline, alternating, several times, and checks against
+tests/perf/thresholds.json:
+  - the RATIOS median(clipped seconds) / median(stochastic seconds) and the same for sweep (all timed
+    in this same job, so a slower or busier machine moves both), with the generous slack stored in the
+    file;
   - EXACT noise-free counts from the stats (subframes, fragments, candidates, rays), which change
     only when the algorithm does, and must not differ between repeats.
 
@@ -42,8 +44,14 @@ EXACT_COUNTS = {
                 "measured_fragment_paths", "propagated_triangles", "reclip_fragments", "reclip_mixed_fragments",
                 "reclip_near_clipped", "open_rays", "open_candidates", "open_fragments", "open_shaded_pieces",
                 "close_rays", "close_candidates", "close_fragments", "close_shaded_pieces"],
+    "sweep": ["subframes_total", "subframes_max_per_tile", "reclip_fragments", "sweep_positions",
+              "sweep_spilled_pixels", "sweep_unswept_fragments"],
     "stochastic": ["triangles", "rays", "primary_rays", "samples", "max_time_steps", "vertex_evaluations"],
 }
+# What each gate method renders, on top of the scene's own settings.
+METHOD_SETTINGS = {"clipped": ["render.method=clipped"],
+                   "sweep": ["render.method=clipped", "render.time_integration=sweep"],
+                   "stochastic": ["render.method=stochastic"]}
 
 # The committed ratio limit is the measured ratio times this: timing on a shared 2-core machine
 # varies by tens of percent between runs, a real regression worth stopping for is a factor.
@@ -59,8 +67,10 @@ def render(clipblur, method, mode, workdir, index, threads):
     image = Path(workdir) / f"{method}_{index}.exr"
     stats = image.with_suffix(".stats.json")
     cmd = [clipblur, "render", str(SCENE), "--out", str(image), "--stats", str(stats), "--progress", "none",
-           "--threads", str(threads), "--set", f"render.method={method}", "--set", f"film.width={m['width']}",
+           "--threads", str(threads), "--set", f"film.width={m['width']}",
            "--set", f"film.height={m['height']}", "--set", f"render.samples={m['samples']}"]
+    for setting in METHOD_SETTINGS[method]:
+        cmd += ["--set", setting]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise GateError(f"render failed ({r.returncode}): {' '.join(cmd)}\n{r.stderr.strip()}")
@@ -70,12 +80,12 @@ def render(clipblur, method, mode, workdir, index, threads):
 
 def measure(clipblur, mode, threads):
     repeats = MODES[mode]["repeats"]
-    seconds = {"clipped": [], "stochastic": []}
+    seconds = {m: [] for m in METHOD_SETTINGS}
     counts = {}
     with tempfile.TemporaryDirectory(prefix="clipblur_perf_") as workdir:
         # Alternate the methods so a burst of load elsewhere hits both rather than one.
         for i in range(repeats):
-            for method in ("clipped", "stochastic"):
+            for method in METHOD_SETTINGS:
                 s = render(clipblur, method, mode, workdir, i, threads)
                 seconds[method].append(s["seconds"]["total"])
                 c = {k: s["counts"].get(k) for k in EXACT_COUNTS[method]}
@@ -84,7 +94,8 @@ def measure(clipblur, mode, threads):
                 counts[method] = c
     medians = {m: statistics.median(v) for m, v in seconds.items()}
     return {"seconds": seconds, "median_seconds": medians,
-            "ratio": medians["clipped"] / medians["stochastic"], "counts": counts}
+            "ratio": medians["clipped"] / medians["stochastic"],
+            "ratio_sweep": medians["sweep"] / medians["stochastic"], "counts": counts}
 
 
 def check(result, expected, counts_only):
@@ -103,6 +114,11 @@ def check(result, expected, counts_only):
             failures.append("ratio_max: no committed value (run --update)")
         elif result["ratio"] > limit:
             failures.append(f"clipped/stochastic time ratio {result['ratio']:.3f} > limit {limit:.3f}")
+        limit = expected.get("ratio_sweep_max")
+        if limit is None:
+            failures.append("ratio_sweep_max: no committed value (run --update)")
+        elif result["ratio_sweep"] > limit:
+            failures.append(f"sweep/stochastic time ratio {result['ratio_sweep']:.3f} > limit {limit:.3f}")
     return failures
 
 
@@ -131,14 +147,17 @@ def main():
         if not Path(args.clipblur).is_file():
             raise GateError(f"no clipblur binary at {args.clipblur}")
         result = measure(args.clipblur, args.mode, args.threads)
-        print(f"perf gate ({args.mode}): clipped median {result['median_seconds']['clipped']:.4f} s, stochastic "
-              f"median {result['median_seconds']['stochastic']:.4f} s, ratio {result['ratio']:.3f}")
+        med = result["median_seconds"]
+        print(f"perf gate ({args.mode}): clipped median {med['clipped']:.4f} s, sweep median {med['sweep']:.4f} s, "
+              f"stochastic median {med['stochastic']:.4f} s, ratios {result['ratio']:.3f} and {result['ratio_sweep']:.3f}")
 
         path = Path(args.thresholds)
         table = json.loads(path.read_text()) if path.is_file() else {}
         if args.update:
             table[args.mode] = {"ratio_measured": round(result["ratio"], 4),
                                 "ratio_max": round(result["ratio"] * args.slack, 4),
+                                "ratio_sweep_measured": round(result["ratio_sweep"], 4),
+                                "ratio_sweep_max": round(result["ratio_sweep"] * args.slack, 4),
                                 "slack": args.slack, "git": git_hash(), "counts": result["counts"]}
             path.write_text(json.dumps(table, indent=2, sort_keys=True) + "\n")
             print(f"updated {path} [{args.mode}]")
