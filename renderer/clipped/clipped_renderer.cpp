@@ -28,22 +28,23 @@ namespace {
 struct ImageWriter {
     Image& image;
     glm::dvec3 background;
-    Image::Channel* z;
+    Image::Channel* depth;
     Image::Channel* coverage;
     Image::Channel* mx;
     Image::Channel* my;
 
     ImageWriter(Image& img, const glm::dvec3& bg)
-        : image(img), background(bg), z(img.find("Z")), coverage(img.find("coverage")), mx(img.find("motion.x")),
+        : image(img), background(bg), depth(img.find("Z")), coverage(img.find("coverage")), mx(img.find("motion.x")),
           my(img.find("motion.y")) {}
 
-    void write(std::size_t pixel, const glm::dvec3& colour, double covered, double depth, const glm::dvec2& motion) {
+    // z: the pixel's depth AOV (meanDepth).
+    void write(std::size_t pixel, const glm::dvec3& colour, double covered, float z, const glm::dvec2& motion) {
         const double c = std::clamp(covered, 0.0, 1.0);
         const glm::dvec3 rgb = colour + (1.0 - c) * background;
         for (int k = 0; k < 3; ++k) image.channels[static_cast<std::size_t>(k)].values[pixel] = static_cast<float>(rgb[k]);
         image.channels[3].values[pixel] = static_cast<float>(c);
         if (coverage) coverage->values[pixel] = static_cast<float>(c);
-        if (z) z->values[pixel] = covered > 0.0 ? static_cast<float>(depth / covered) : std::numeric_limits<float>::infinity();
+        if (depth) depth->values[pixel] = z;
         if (mx) {
             const glm::dvec2 m = covered > 0.0 ? motion / covered : glm::dvec2(0.0);
             mx->values[pixel] = static_cast<float>(m.x);
@@ -51,6 +52,27 @@ struct ImageWriter {
         }
     }
 };
+
+// An area-weighted depth sum over the area it covers; infinity where nothing is.
+float meanDepth(double depth_sum, double covered) {
+    return covered > 0.0 ? static_cast<float>(depth_sum / covered) : std::numeric_limits<float>::infinity();
+}
+
+// The depth AOV is the depth of what is seen at mid-shutter, area-weighted over the pixel's covered part
+// (what a compositor pairs with motion vectors centred on the frame), so it needs the visibility of a
+// still frame at that time: nullopt when no depth is asked for or nothing moves (then every time has it).
+std::optional<PixelSums> midShutterDepth(const RenderJob& job, const EmbreeScene& embree, const MeshAdjacency& adjacency,
+                                         const Shader& shader, double t0, double t1, const RenderCallbacks& callbacks,
+                                         FrameFragmentStats& stats) {
+    const Scene& scene = job.scene;
+    if (!job.output.aov_depth || sceneIsStill(scene, t0, t1)) return std::nullopt;
+    PixelSums sums;
+    sums.resize(static_cast<std::size_t>(scene.film.width) * scene.film.height);
+    buildFrameFragments(scene, embree, adjacency, Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees),
+                        TileGrid(scene.film.width, scene.film.height, job.render.tile_size), 0.5 * (t0 + t1), shader,
+                        {job.render.visibility_rays, false, job.render.audit}, callbacks, &sums, stats);
+    return sums;
+}
 
 void recordFrameStats(RenderStats& stats, const std::string& prefix, const FrameFragmentStats& s) {
     stats.counts[prefix + "rays"] = s.candidates.rays;
@@ -385,13 +407,17 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                       1.0 / segments, s, segments, sums, totals);
     }
     stats.seconds["segments"] = secondsSince(stage);
+    FrameFragmentStats mid_stats;
+    const std::optional<PixelSums> mid = midShutterDepth(job, embree, adjacency, shader, t0, t1, callbacks, mid_stats);
 
     result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(job.output));
     ImageWriter writer(result.image, scene.film.background);
     for (int y = ctx.window.y0; y < ctx.window.y1(); ++y) {
         for (int x = ctx.window.x0; x < ctx.window.x1(); ++x) {
             const std::size_t i = static_cast<std::size_t>(y - ctx.window.y0) * ctx.window.width + (x - ctx.window.x0);
-            writer.write(result.image.index(x, y), sums.colour[i], sums.covered[i], sums.depth[i], sums.motion[i]);
+            const std::size_t p = static_cast<std::size_t>(y) * scene.film.width + x;
+            const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(sums.depth[i], sums.covered[i]);
+            writer.write(result.image.index(x, y), sums.colour[i], sums.covered[i], z, sums.motion[i]);
         }
     }
     stats.seconds["total"] = secondsSince(start);
@@ -422,9 +448,11 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["triangles"] = embree.stats().triangles;
     recordFrameStats(stats, "open_", totals.open);
     if (both_frames) recordFrameStats(stats, "close_", totals.close);
+    if (mid) recordFrameStats(stats, "mid_", mid_stats);
     if (settings.audit) {
         AuditStats audit = totals.open.audit;
         audit.merge(totals.close.audit);
+        audit.merge(mid_stats.audit);
         audit.merge(totals.reclip.audit);
         reportAudit(stats, audit);
     }
@@ -464,6 +492,8 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
             total.depth[p] += sums.depth[p];
         }
     }
+    FrameFragmentStats mid_stats;
+    const std::optional<PixelSums> mid = midShutterDepth(job, embree, adjacency, shader, t0, t1, callbacks, mid_stats);
     RenderResult result;
     const DataWindow window = renderWindow(job);
     result.image = Image::make(scene.film.width, scene.film.height, window, outputChannels(job.output));
@@ -471,8 +501,9 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     for (int y = window.y0; y < window.y1(); ++y) {
         for (int x = window.x0; x < window.x1(); ++x) {
             const std::size_t p = static_cast<std::size_t>(y) * scene.film.width + x;
-            writer.write(result.image.index(x, y), total.colour[p] / double(n), total.covered[p] / double(n),
-                         total.depth[p] / double(n), glm::dvec2(0.0));
+            const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(total.depth[p], total.covered[p]);
+            writer.write(result.image.index(x, y), total.colour[p] / double(n), total.covered[p] / double(n), z,
+                         glm::dvec2(0.0));
         }
     }
     RenderStats& stats = result.stats;
@@ -481,7 +512,12 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     stats.counts["renders"] = n;
     stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
     recordFrameStats(stats, "all_", frame_stats);
-    if (settings.audit) reportAudit(stats, frame_stats.audit);
+    if (mid) recordFrameStats(stats, "mid_", mid_stats);
+    if (settings.audit) {
+        AuditStats audit = frame_stats.audit;
+        audit.merge(mid_stats.audit);
+        reportAudit(stats, audit);
+    }
     stats.seconds["total"] = secondsSince(start);
     return result;
 }

@@ -25,6 +25,7 @@ namespace {
 struct TileCounters {
     long long primary_rays = 0;
     long long shadow_rays = 0;
+    long long depth_rays = 0;  // depth AOV: the samples traced again at mid-shutter
 };
 
 }  // namespace
@@ -49,6 +50,9 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     const CameraPath camera_path(scene.camera);
     const CameraFrame camera_open = camera_path.at(t0);
     const CameraFrame camera_close = camera_path.at(t1);
+    // The depth AOV is what is seen at mid-shutter: each sample's spatial position traced again at that time.
+    const double t_mid = 0.5 * (t0 + t1);
+    const CameraFrame camera_mid = camera_path.at(t_mid);
     // Tiles cover the render window only; every pixel's samples are keyed by its film position, so a
     // window renders exactly the pixels the whole film would.
     const DataWindow window = renderWindow(job);
@@ -92,7 +96,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                                          pixel_samples, scratch);
                     glm::dvec3 colour(0.0);
                     double covered = 0.0;
-                    double depth_sum = 0.0;
+                    double depth_sum = 0.0, depth_covered = 0.0;
                     glm::dvec2 motion_sum(0.0);
                     double motion_count = 0.0;
                     for (const SpaceTimeSample& s : pixel_samples) {
@@ -103,6 +107,15 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                         const glm::dvec3 dir = camera.e3 + p.x * camera.e1 + p.y * camera.e2;
                         const EmbreeHit hit = visibility.intersect(camera.position, dir, t);
                         ++counters.primary_rays;
+                        if (z_out) {
+                            const glm::dvec3 mid_dir = camera_mid.e3 + p.x * camera_mid.e1 + p.y * camera_mid.e2;
+                            const EmbreeHit mid = visibility.intersect(camera_mid.position, mid_dir, t_mid);
+                            ++counters.depth_rays;
+                            if (mid.hit) {
+                                depth_sum += mid.distance;
+                                depth_covered += 1.0;
+                            }
+                        }
                         if (!hit.hit) {
                             colour += scene.film.background;
                             continue;
@@ -110,7 +123,6 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                         const SurfacePoint point{hit.object, hit.triangle, hit.u, hit.v, t};
                         colour += shader.shade(point, camera.position, &counters.shadow_rays);
                         covered += 1.0;
-                        depth_sum += hit.distance;
                         if (mx_out) {
                             SurfacePoint at = point;
                             at.time = t0;
@@ -130,7 +142,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                     rgba[3][pixel] = static_cast<float>(covered * inv);
                     if (cov_out) cov_out[pixel] = static_cast<float>(covered * inv);
                     if (z_out)
-                        z_out[pixel] = covered > 0.0 ? static_cast<float>(depth_sum / covered)
+                        z_out[pixel] = depth_covered > 0.0 ? static_cast<float>(depth_sum / depth_covered)
                                                      : std::numeric_limits<float>::infinity();
                     if (mx_out) {
                         const glm::dvec2 m = motion_count > 0.0 ? motion_sum / motion_count : glm::dvec2(0.0);
@@ -146,6 +158,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
         std::lock_guard lock(progress_mutex);
         totals.primary_rays += counters.primary_rays;
         totals.shadow_rays += counters.shadow_rays;
+        totals.depth_rays += counters.depth_rays;
     });
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 
@@ -160,7 +173,8 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     stats.counts["samples"] = static_cast<long long>(window.width) * window.height * samples;
     stats.counts["primary_rays"] = totals.primary_rays;
     stats.counts["shadow_rays"] = totals.shadow_rays;
-    stats.counts["rays"] = totals.primary_rays + totals.shadow_rays;
+    stats.counts["depth_rays"] = totals.depth_rays;
+    stats.counts["rays"] = totals.primary_rays + totals.shadow_rays + totals.depth_rays;
     stats.counts["tiles"] = total_tiles;
     stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
     stats.counts["triangles"] = vs.triangles;
