@@ -11,6 +11,46 @@
 
 namespace clipblur {
 
+namespace {
+
+// Displacements over a segment of one object's fragment triangles near a tile, against where they start:
+// the least-squares affine fit d = D (p - mean p) + mean d gives the displacement gradient D.
+struct DisplacementField {
+    RasterBox box;  // of the displacements
+    double n = 0.0;
+    glm::dvec2 sum_p{0.0}, sum_d{0.0};
+    glm::dmat2 sum_pp{0.0}, sum_dp{0.0};
+
+    void add(const glm::dvec2& p, const glm::dvec2& d) {
+        box.expand(d);
+        n += 1.0;
+        sum_p += p;
+        sum_d += d;
+        sum_pp += glm::outerProduct(p, p);
+        sum_dp += glm::outerProduct(d, p);
+    }
+
+    // The part of J = I + D that sweeps do not follow: J less the stretch along the raster axes that
+    // they do (the lengths of J's columns), as a Frobenius norm. Where the positions do not span the
+    // plane (one or two fragments, all in a line) the displacements' spread over the region's diagonal
+    // `extent`, which bounds the whole gradient, stands in.
+    double unstretchedGradient(double extent) const {
+        const double spread = glm::length(box.hi - box.lo) / (std::sqrt(2.0) * extent);
+        if (n < 3.0) return spread;
+        const glm::dvec2 mp = sum_p / n, md = sum_d / n;
+        const glm::dmat2 cpp = sum_pp - n * glm::outerProduct(mp, mp);
+        const glm::dmat2 cdp = sum_dp - n * glm::outerProduct(md, mp);
+        const double det = glm::determinant(cpp);
+        const double trace = cpp[0][0] + cpp[1][1];
+        if (!(det > 1e-6 * trace * trace)) return spread;
+        const glm::dmat2 j = glm::dmat2(1.0) + cdp * glm::inverse(cpp);
+        const glm::dmat2 residual = j - glm::dmat2(glm::length(j[0]), 0.0, 0.0, glm::length(j[1]));
+        return std::sqrt(glm::dot(residual[0], residual[0]) + glm::dot(residual[1], residual[1]));
+    }
+};
+
+}  // namespace
+
 bool cameraIsStill(const Camera& camera, double t0, double t1) {
     std::vector<double> times{t0, t1};
     for (const CameraKey& k : camera.keys)
@@ -121,12 +161,13 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             };
             // Per object, the displacements of what is near the tile at the segment's start, and of what is
             // near it at the end (one group would mix surfaces that pass the tile at different times).
-            std::vector<std::pair<std::uint32_t, RasterBox>> at_start, at_end;
-            const auto add = [](std::vector<std::pair<std::uint32_t, RasterBox>>& group, std::uint32_t object,
-                                const glm::dvec2& d) {
-                for (auto& [o, box] : group)
-                    if (o == object) return box.expand(d);
-                group.push_back({object, RasterBox{d, d}});
+            std::vector<std::pair<std::uint32_t, DisplacementField>> at_start, at_end;
+            const auto add = [](std::vector<std::pair<std::uint32_t, DisplacementField>>& group, std::uint32_t object,
+                                const glm::dvec2& at, const glm::dvec2& d) {
+                for (auto& [o, field] : group)
+                    if (o == object) return field.add(at, d);
+                group.push_back({object, DisplacementField{}});
+                group.back().second.add(at, d);
             };
             double deviation = 0.0;
             for (const FragmentRef& ref : refs) {
@@ -134,29 +175,29 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 if (fm.crosses_near) continue;
                 deviation = std::max(deviation, fm.chord_deviation);
                 const std::uint32_t object = (*layers.triangles[ref.layer])[ref.index].object;
-                if (near(fm.start)) add(at_start, object, fm.end - fm.start);
-                if (near(fm.end)) add(at_end, object, fm.end - fm.start);
+                if (near(fm.start)) add(at_start, object, fm.start, fm.end - fm.start);
+                if (near(fm.end)) add(at_end, object, fm.start, fm.end - fm.start);
             }
             // Bounded by the spread of all their displacements once two objects meet.
-            const auto spread = [](const std::vector<std::pair<std::uint32_t, RasterBox>>& group) {
+            const auto spread = [](const std::vector<std::pair<std::uint32_t, DisplacementField>>& group) {
                 if (group.size() < 2) return 0.0;
                 RasterBox all;
-                for (const auto& [o, box] : group) {
-                    all.expand(box.lo);
-                    all.expand(box.hi);
+                for (const auto& [o, field] : group) {
+                    all.expand(field.box.lo);
+                    all.expand(field.box.hi);
                 }
                 return glm::length(all.hi - all.lo);
             };
             const double relative = std::max(spread(at_start), spread(at_end));
             constexpr double kChordTolerance = 0.1;  // px
-            // Fragments move rigidly along their centroid's path, so a surface that stretches or turns under
-            // them (a dolly, a roll) is followed to within its displacement gradient times a fragment's
-            // size (1 px) per subframe; keep that at kChordTolerance. The gradient is taken as one object's
-            // displacement spread over the near region's diagonal.
+            // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
+            // surface is (SweepPath), so a surface that turns or shears under them (a roll) is followed to
+            // within that part of its displacement gradient times a fragment's size (1 px) per subframe;
+            // keep that at kChordTolerance.
             double gradient = 0.0;
             for (const auto* group : {&at_start, &at_end})
-                for (const auto& [o, box] : *group)
-                    gradient = std::max(gradient, glm::length(box.hi - box.lo) / (std::sqrt(2.0) * (size + 2.0 * pad)));
+                for (const auto& [o, field] : *group)
+                    gradient = std::max(gradient, field.unstretchedGradient(size + 2.0 * pad));
             p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), gradient / kChordTolerance}),
                                     max_subframes,
                                     &p.capped);

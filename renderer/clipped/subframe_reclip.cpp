@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "renderer/visibility/frame_geometry.h"
@@ -79,7 +80,38 @@ std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& swee
     const MeshPoint point{source.object, source.triangle, bary};
     const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
     if (a.behind || b.behind) return std::nullopt;
-    return SweepPath{b.raster - a.raster, 0.5 * (a.raster + b.raster) - at};
+    SweepPath path;
+    path.chord = b.raster - a.raster;
+    path.bend = 0.5 * (a.raster + b.raster) - at;
+    path.pivot = at;
+    return path;
+}
+
+// How much the surface under a screen triangle stretches along each raster axis at the interval's start
+// and end: the lengths of the images of the unit x and y vectors under the affine map that carries the
+// triangle's vertices from t to there. Rotation and shear are left to the rigid move (their error is
+// what the re-clip count bounds); identity where a vertex is behind the camera or the triangle is a sliver.
+glm::dvec4 surfaceStretch(const Scene& scene, const SweepInterval& sweep, const ScreenTriangle& screen,
+                          const SourceTriangle& source) {
+    const glm::dvec2 e1 = screen.raster[1] - screen.raster[0], e2 = screen.raster[2] - screen.raster[0];
+    const double det = e1.x * e2.y - e1.y * e2.x;
+    const glm::dvec4 identity(1.0);
+    if (!(std::abs(det) > 1e-9 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return identity;
+    const glm::dmat2 from_t = glm::inverse(glm::dmat2(e1, e2));
+    glm::dvec4 stretch;
+    int k = 0;
+    for (const MotionSnapshot* snapshot : {sweep.begin, sweep.end}) {
+        std::array<glm::dvec2, 3> r;
+        for (int i = 0; i < 3; ++i) {
+            const ProjectedPoint p = project(*snapshot, scene, {source.object, source.triangle, source.bary[i]});
+            if (p.behind) return identity;
+            r[i] = p.raster;
+        }
+        const glm::dmat2 map = glm::dmat2(r[1] - r[0], r[2] - r[0]) * from_t;
+        stretch[k++] = glm::length(map[0]);
+        stretch[k++] = glm::length(map[1]);
+    }
+    return stretch;
 }
 
 // Adds a piece's colour difference, merged into an equal piece already listed (both frames' copies of
@@ -109,6 +141,8 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
         propagate(scene, snapshot, layers.ode, (*layers.triangles[ref.layer])[ref.index], ref, weights[ref.layer],
                   scratch, stats);
 
+    // Sweep: each screen triangle's stretch, computed when a fragment first needs it (NaN: not yet).
+    if (sweep) scratch.stretch.assign(scratch.screen.size(), glm::dvec4(std::numeric_limits<double>::quiet_NaN()));
     const Tile region = sweep ? sweep->resolve : tile;
     resolveTile(scratch.screen, {region.x0, region.y0, region.width(), region.height()}, {}, scratch.tile,
                 scratch.fragments);
@@ -177,7 +211,11 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                 SweepPath shift;
                 if (path && path->reach() <= 0.5 * sweep->reach) {
                     shift = *path;
-                    if (shift.chord != glm::dvec2(0.0) || shift.bend != glm::dvec2(0.0)) positions = sweep->positions;
+                    glm::dvec4& stretch = scratch.stretch[first];
+                    if (std::isnan(stretch.x)) stretch = surfaceStretch(scene, *sweep, scratch.screen[first], scratch.sources[first]);
+                    shift.stretch_chord = glm::dvec2(stretch.z, stretch.w) - glm::dvec2(stretch.x, stretch.y);
+                    shift.stretch_bend = 0.5 * (glm::dvec2(stretch.x, stretch.y) + glm::dvec2(stretch.z, stretch.w)) - 1.0;
+                    if (shift.moves()) positions = sweep->positions;
                 } else {
                     ++stats.sweep_unswept;
                 }

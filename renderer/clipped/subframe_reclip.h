@@ -51,8 +51,9 @@ struct TileSums {
 
 // Sweep integration (render.time_integration: sweep): the subframe at time t stands for the interval
 // [begin, end] around it. Each re-clipped fragment is moved along the path of the surface point under its
-// centroid (the parabola through its exact positions at begin, t and end) and placed at `positions`
-// equally spaced times, the same times for every fragment of the segment: fragments sampled at different
+// centroid (the parabola through its exact positions at begin, t and end), stretched along the raster axes
+// as the surface under it stretches (a dolly), and placed at `positions` equally spaced times, the same
+// times for every fragment of the interval: fragments sampled at different
 // times would open cracks and overlaps along their shared edges. Visibility stays as resolved at t, so for
 // what moves in the image without changing what it hides this equals point subframes at all those times;
 // that is why re-clips can be spaced by relative motion and path curvature alone.
@@ -73,6 +74,7 @@ struct ReclipScratch {
     std::vector<ShadedPiece> pieces;
     std::vector<PixelWeight> footprint;
     std::vector<std::pair<ConvexPolygon, glm::dvec3>> textured;  // sweep: pieces with their colour per px^2
+    std::vector<glm::dvec4> stretch;  // sweep: per screen triangle, x and y stretch at the interval's ends
     TileScratch tile;
     FragmentTile fragments;
 };

@@ -115,6 +115,11 @@ void polygonFootprint(const SmallPolygon& p, double scale, std::vector<PixelWeig
 
 double SweepPath::reach() const { return 0.5 * glm::length(chord) + glm::length(bend); }
 
+bool SweepPath::moves() const {
+    const glm::dvec2 zero(0.0);
+    return chord != zero || bend != zero || stretch_chord != zero || stretch_bend != zero;
+}
+
 void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions, std::vector<PixelWeight>& out) {
     if (q.degenerate() || q.n > kMaxStoredVertices) {
         if (!q.degenerate()) {  // more vertices than stored fragments have: cut it into stored-size pieces
@@ -127,19 +132,22 @@ void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions
     }
     const int m = std::max(1, positions);
     const double scale = 1.0 / m;
+    // A stretch along the raster axes keeps an axis-aligned rectangle axis-aligned.
     if (axisAlignedRectangle(q)) {
         const Bounds2 box = q.bounds();
         for (int k = 0; k < m; ++k) {
-            const glm::dvec2 shift = path.at((k + 0.5) / m - 0.5);
-            rectangleFootprint(box.lo + shift, box.hi + shift, scale, out);
+            const double s = (k + 0.5) / m - 0.5;
+            const glm::dvec2 at = path.pivot + path.at(s), stretch = path.stretchAt(s);
+            rectangleFootprint(at + stretch * (box.lo - path.pivot), at + stretch * (box.hi - path.pivot), scale, out);
         }
         return;
     }
     SmallPolygon moved;
     moved.n = q.n;
     for (int k = 0; k < m; ++k) {
-        const glm::dvec2 shift = path.at((k + 0.5) / m - 0.5);
-        for (int i = 0; i < q.n; ++i) moved.v[i] = q.v[i] + shift;
+        const double s = (k + 0.5) / m - 0.5;
+        const glm::dvec2 at = path.pivot + path.at(s), stretch = path.stretchAt(s);
+        for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
         polygonFootprint(moved, scale, out);
     }
 }

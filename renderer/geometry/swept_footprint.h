@@ -17,12 +17,20 @@ struct PixelWeight {
 // A translation over an interval, s in [-1/2, 1/2]: the parabola through offset 0 at s = 0 and the
 // offsets -chord/2 + bend and chord/2 + bend at the ends. Three exact positions of a point give it; the
 // straight chord alone would cut the corner of a curved path (a rolling camera) by `bend`.
+// Optionally a stretch about `pivot` (the point the translation is of): per raster axis the factor
+// 1 + s stretch_chord + 4 s^2 stretch_bend, the parabola through 1 at s = 0 and the surface's stretch at
+// the ends, so a fragment on a surface the camera dollies away from shrinks with it.
 struct SweepPath {
     glm::dvec2 chord{0.0};
     glm::dvec2 bend{0.0};
+    glm::dvec2 pivot{0.0};
+    glm::dvec2 stretch_chord{0.0};
+    glm::dvec2 stretch_bend{0.0};
 
     glm::dvec2 at(double s) const { return s * chord + (4.0 * s * s) * bend; }
-    // Farthest offset from the start: |chord| / 2 + |bend| bounds it.
+    glm::dvec2 stretchAt(double s) const { return glm::dvec2(1.0) + s * stretch_chord + (4.0 * s * s) * stretch_bend; }
+    bool moves() const;
+    // Farthest offset of the pivot from the start: |chord| / 2 + |bend| bounds it.
     double reach() const;
 };
 

@@ -77,6 +77,68 @@ TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
     }
 }
 
+// A striped quad receding from depth 5 to 6 shrinks toward the image centre by 5/6. Sweeps stretch each
+// fragment as the surface under it stretches, so with fine positions a sweep matches many point
+// subframes up to the parabolas' error. Bound: a raster coordinate x0 px from the centre moves as
+// f(t) = 5 x0 / (5 + t), whose third derivative is at most 6 * 5 x0 / 5^4 = 0.048 x0; a parabola
+// through three exact values on an interval of length h errs by at most that / 6 * (sqrt 3 / 36) h^3,
+// 3.9e-4 x0 h^3: 6.2e-3 px for x0 <= 16 and h = 1. A pixel with two edges changes coverage by at most
+// twice that, and 96 subframes against positions 0.02 px apart differ in quadrature by about the
+// squared step, ~1e-3: 0.02 for one interval; three intervals divide the parabola part by 27: 0.004.
+// Fragments moved rigidly (no stretch) miss both bounds: 0.046 and 0.0086 when the stretch is left out.
+TEST(SweepIntegration, DollyMatchesPointSubframes) {
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    Material stripes;
+    stripes.texture.kind = Texture::Kind::Stripe;
+    stripes.texture.scale = 0.3;
+    stripes.texture.color2 = glm::dvec3(0.2, 0.5, 0.0);
+    job.scene.materials.push_back(stripes);
+    Object quad = rasterQuad(3.3, 5.2, 13.7, 28.9, 5.0);
+    quad.material = 1;
+    quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
+    quad.transform.push_back(TransformKey{1.0, glm::dvec3(0, 0, 1), {1, 0, 0, 0}, glm::dvec3(1.0)});
+    job.scene.objects.push_back(quad);
+    job.render.subframes = 96;
+    const RenderResult point = renderFrame(job, 0);
+    job.render.time_integration = TimeIntegration::Sweep;
+    job.render.sweep_spacing = 0.02;
+    for (const auto& [intervals, bound] : {std::pair{1, 0.02}, {3, 0.004}}) {
+        job.render.subframes = intervals;
+        const RenderResult sweep = renderFrame(job, 0);
+        EXPECT_LT(maxDifference(sweep, point), bound) << intervals;
+        EXPECT_EQ(sweep.stats.counts.at("sweep_unswept_fragments"), 0);
+    }
+}
+
+// Auto re-clips with sweeps: a stretch along the raster axes is followed by the sweep itself, so a dolly
+// needs re-clips only for its paths' curvature, while a roll (which sweeps do not follow inside a
+// fragment) still needs one per 0.1 of its displacement gradient. Dolly: depth 5 -> 10 halves the image
+// about its centre; the gradient would ask for |1/2 - 1| / 0.1 = 5 re-clips, the curvature (a point x0 px
+// from the centre is off uniform motion by x0 (3/4 - 2/3) = x0 / 12 <= 1.4 px at mid-shutter, cube rule
+// at 0.1 px) for ceil(cbrt(14)) = 3. Roll by 0.25 rad: J = R, whose columns have length 1, so all of
+// |R - I| = 2 sqrt(2) sin(0.125) = 0.35 is left: ceil(3.5) = 4.
+TEST(SweepIntegration, AutoReclipsFollowRollButNotStretch) {
+    RenderJob dolly = squareFilmJob();
+    dolly.render.method = Method::Clipped;
+    dolly.render.time_integration = TimeIntegration::Sweep;
+    Object quad = rasterQuad(2.0, 2.0, 30.0, 30.0, 5.0);
+    quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
+    quad.transform.push_back(TransformKey{1.0, glm::dvec3(0, 0, 5), {1, 0, 0, 0}, glm::dvec3(1.0)});
+    dolly.scene.objects.push_back(quad);
+    EXPECT_LE(renderFrame(dolly, 0).stats.counts.at("subframes_max_per_tile"), 3);
+
+    RenderJob roll = squareFilmJob();
+    roll.render.method = Method::Clipped;
+    roll.render.time_integration = TimeIntegration::Sweep;
+    roll.scene.objects.push_back(rasterQuad(-8.0, -8.0, 40.0, 40.0, 5.0));
+    roll.scene.camera.keys.push_back(
+        CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(std::sin(0.25), std::cos(0.25), 0)});
+    const RenderResult rolled = renderFrame(roll, 0);
+    EXPECT_EQ(rolled.stats.counts.at("segments"), 1);
+    EXPECT_GE(rolled.stats.counts.at("subframes_max_per_tile"), 4);
+}
+
 // Where one surface slides over another, what is hidden changes within an interval and a sweep keeps
 // visibility as it was at the re-clip: the error against the exact coverage (the oracle of
 // ClippedRenderer.TranslatingQuadConverges...) falls as re-clips are added, and auto picks enough.
