@@ -303,6 +303,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         const auto total = [&](int x, int y) {  // fixed order: bit-identical for any thread count
             Spill sum;
             for (const TileSums& s : tile_sums) {
+                if (!s.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
                 const std::size_t i = s.index(x, y);
                 sum.colour += s.colour[i];
                 sum.covered += s.covered[i];
@@ -330,8 +331,12 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         }
         if (sweeping && n > 0) {
             auto& mine = spills[static_cast<std::size_t>(index)];
-            for (int y = std::max(sweep.box.y0, window.y0); y < std::min(sweep.box.y1, window.y1()); ++y) {
-                for (int x = std::max(sweep.box.x0, window.x0); x < std::min(sweep.box.x1, window.x1()); ++x) {
+            Tile reached = tile_sums[0].box;  // what the subframes' footprints reach
+            for (const TileSums& s : tile_sums)
+                reached = {std::min(reached.x0, s.box.x0), std::min(reached.y0, s.box.y0), std::max(reached.x1, s.box.x1),
+                           std::max(reached.y1, s.box.y1)};
+            for (int y = std::max(reached.y0, window.y0); y < std::min(reached.y1, window.y1()); ++y) {
+                for (int x = std::max(reached.x0, window.x0); x < std::min(reached.x1, window.x1()); ++x) {
                     if (x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1) continue;
                     Spill sum = total(x, y);
                     if (sum.covered == 0.0) continue;

@@ -127,6 +127,32 @@ void addTextured(const ConvexPolygon& piece, const glm::dvec3& colour,
     textured.push_back({piece, colour});
 }
 
+// Sweep: adds the tile's recorded footprints into `out`, sized to the pixels they reach (within
+// sweep.box, which bounds them). Sizing it by sweep.box alone allocated and cleared up to a film's worth
+// of pixels per tile and subframe when a fast fragment made the bound large (a dolly with few re-clips).
+void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipScratch& scratch, TileSums& out) {
+    Tile box = tile;
+    for (const PixelWeight& w : scratch.footprint) {
+        box.x0 = std::min(box.x0, w.x);
+        box.y0 = std::min(box.y0, w.y);
+        box.x1 = std::max(box.x1, w.x + 1);
+        box.y1 = std::max(box.y1, w.y + 1);
+    }
+    box = {std::max(box.x0, sweep.box.x0), std::max(box.y0, sweep.box.y0), std::min(box.x1, sweep.box.x1),
+           std::min(box.y1, sweep.box.y1)};
+    out.reset(box);
+    for (std::size_t e = 0; e < scratch.footprint.size(); ++e) {
+        const PixelWeight& w = scratch.footprint[e];
+        const SweptPayload& p = scratch.swept[scratch.footprint_owner[e]];
+        const std::size_t i = out.index(w.x, w.y);
+        out.colour[i] += w.weight * p.colour;
+        if (!p.coverage) continue;
+        out.covered[i] += w.weight;
+        out.motion[i] += w.weight * p.motion;
+        if (p.inv_depth > 0.0) out.depth[i] += w.weight / p.inv_depth;
+    }
+}
+
 }  // namespace
 
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
@@ -147,7 +173,10 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
     resolveTile(scratch.screen, {region.x0, region.y0, region.width(), region.height()}, {}, scratch.tile,
                 scratch.fragments);
     if (audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
-    out.reset(sweep ? sweep->box : tile);
+    if (!sweep) out.reset(tile);
+    scratch.footprint.clear();
+    scratch.footprint_owner.clear();
+    scratch.swept.clear();
     for (int y = region.y0; y < region.y1; ++y) {
         for (int x = region.x0; x < region.x1; ++x) {
             for (const Fragment& fragment : scratch.fragments.pixel(x, y)) {
@@ -220,17 +249,19 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     ++stats.sweep_unswept;
                 }
                 stats.sweep_positions += positions;
-                scratch.footprint.clear();
-                sweptFootprint(polygon, shift, positions, scratch.footprint);
-                for (const PixelWeight& w : scratch.footprint) add(out.index(w.x, w.y), w.weight);
-                for (const auto& [piece, piece_colour] : scratch.textured) {
-                    scratch.footprint.clear();
-                    sweptFootprint(piece, shift, positions, scratch.footprint);
-                    for (const PixelWeight& w : scratch.footprint) out.colour[out.index(w.x, w.y)] += w.weight * piece_colour;
-                }
+                // Footprints are kept until the tile's last fragment: only then is the box they reach known.
+                const auto sweepInto = [&](const ConvexPolygon& q, const SweptPayload& payload) {
+                    scratch.swept.push_back(payload);
+                    sweptFootprint(q, shift, positions, scratch.footprint);
+                    scratch.footprint_owner.resize(scratch.footprint.size(),
+                                                   static_cast<std::uint32_t>(scratch.swept.size() - 1));
+                };
+                sweepInto(polygon, {colour, motion, inv_depth, true});
+                for (const auto& [piece, piece_colour] : scratch.textured) sweepInto(piece, {piece_colour, {}, 0.0, false});
             }
         }
     }
+    if (sweep) accumulateSwept(*sweep, tile, scratch, out);
 }
 
 }  // namespace clipblur

@@ -44,6 +44,7 @@ struct TileSums {
     std::vector<glm::dvec2> motion;
 
     void reset(const Tile& box);
+    bool contains(int x, int y) const { return x >= box.x0 && x < box.x1 && y >= box.y0 && y < box.y1; }
     std::size_t index(int x, int y) const {
         return static_cast<std::size_t>(y - box.y0) * box.width() + (x - box.x0);
     }
@@ -67,12 +68,23 @@ struct SweepInterval {
     Tile resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
     Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
 };
+// Sweep: what one swept polygon adds per px^2 of its footprint. Texture pieces add only their colour
+// difference (coverage false); fragments add colour, coverage, motion and depth.
+struct SweptPayload {
+    glm::dvec3 colour{0.0};
+    glm::dvec2 motion{0.0};
+    double inv_depth = 0.0;
+    bool coverage = true;
+};
+
 struct ReclipScratch {
     std::vector<ScreenTriangle> screen;
     std::vector<FragmentRef> origin;      // per screen triangle
     std::vector<SourceTriangle> sources;  // per screen triangle: its vertices on the mesh triangle
     std::vector<ShadedPiece> pieces;
-    std::vector<PixelWeight> footprint;
+    std::vector<PixelWeight> footprint;           // sweep: every footprint of the tile, in fragment order
+    std::vector<std::uint32_t> footprint_owner;   // per footprint entry: its index in `swept`
+    std::vector<SweptPayload> swept;
     std::vector<std::pair<ConvexPolygon, glm::dvec3>> textured;  // sweep: pieces with their colour per px^2
     std::vector<glm::dvec4> stretch;  // sweep: per screen triangle, x and y stretch at the interval's ends
     TileScratch tile;
