@@ -50,19 +50,24 @@ RenderJob sweepJob(RenderJob job, glm::dvec2 v, int intervals, int positions) {
 // images agree to rounding. Float storage: 1e-6.
 constexpr double kFloatTolerance = 1e-6;
 
-}  // namespace
-
-TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
-    const glm::dvec2 v(11.4, 3.7);
+// A clipped job whose material 1 is stripes across x, 0.8 px wide at depth 6 (a checker would also cut
+// along z, and a quad's plane z = 6 would lie on a cell boundary, where rounding picks the colour).
+RenderJob stripedJob() {
     RenderJob job = squareFilmJob();
     job.render.method = Method::Clipped;
-    // Stripes across x, 0.8 px wide at this depth (a checker would also cut along z, and the quad's
-    // plane z = 6 lies on a cell boundary, where rounding picks the colour).
     Material stripes;
     stripes.texture.kind = Texture::Kind::Stripe;
     stripes.texture.scale = 0.3;
     stripes.texture.color2 = glm::dvec3(0.2, 0.5, 0.0);
     job.scene.materials.push_back(stripes);
+    return job;
+}
+
+}  // namespace
+
+TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
+    const glm::dvec2 v(11.4, 3.7);
+    RenderJob job = stripedJob();
     Object quad = movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v);
     quad.material = 1;  // texture edges inside fragments must move with the surface, not with the fragment
     job.scene.objects.push_back(quad);
@@ -87,13 +92,7 @@ TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
 // squared step, ~1e-3: 0.02 for one interval; three intervals divide the parabola part by 27: 0.004.
 // Fragments moved rigidly (no stretch) miss both bounds: 0.046 and 0.0086 when the stretch is left out.
 TEST(SweepIntegration, DollyMatchesPointSubframes) {
-    RenderJob job = squareFilmJob();
-    job.render.method = Method::Clipped;
-    Material stripes;
-    stripes.texture.kind = Texture::Kind::Stripe;
-    stripes.texture.scale = 0.3;
-    stripes.texture.color2 = glm::dvec3(0.2, 0.5, 0.0);
-    job.scene.materials.push_back(stripes);
+    RenderJob job = stripedJob();
     Object quad = rasterQuad(3.3, 5.2, 13.7, 28.9, 5.0);
     quad.material = 1;
     quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
