@@ -1,5 +1,6 @@
 #include "renderer/clipped/clipped_renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -129,6 +130,21 @@ struct WindowSums {
     explicit WindowSums(std::size_t pixels) : colour(pixels), covered(pixels), depth(pixels), motion(pixels) {}
 };
 
+// A segment with a still backdrop (MotionPlan::backdrop): what moves in front covers a pixel's backdrop
+// for the fraction of the segment its swept coverage gives, so the pixel sees front + (1 - that) x
+// backdrop. Exact where the backdrop is uniform over the part of the pixel the front crosses; an edge of
+// the backdrop under a moving edge in the same pixel is where it is not. front and back carry the
+// segment's weight.
+void compositeBackdrop(const WindowSums& front, const WindowSums& back, double weight, WindowSums& sums) {
+    for (std::size_t i = 0; i < sums.colour.size(); ++i) {
+        const double seen = 1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0);
+        sums.colour[i] += front.colour[i] + seen * back.colour[i];
+        sums.covered[i] += front.covered[i] + seen * back.covered[i];
+        sums.depth[i] += front.depth[i] + seen * back.depth[i];
+        sums.motion[i] += front.motion[i] + seen * back.motion[i];
+    }
+}
+
 // What every shutter segment shares: the scene, its Embree and shading state and the output layout.
 struct ClippedContext {
     const RenderJob& job;
@@ -147,6 +163,7 @@ struct SegmentTotals {
     ReclipStats reclip;
     long long spilled = 0;  // sweep: pixel sums one tile's fragments left in another tile's pixels
     long long subframes_total = 0, still_tiles = 0, capped_tiles = 0, measured = 0, near_crossings = 0;
+    long long backdrop_tiles = 0;
     int max_tile_subframes = 0;
     int band = 0;
 };
@@ -231,6 +248,14 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     totals.capped_tiles += plan.capped_tiles;
     totals.measured += plan.measured;
     totals.near_crossings += plan.near_crossings;
+    totals.backdrop_tiles += plan.backdrop_tiles;
+    // With a backdrop the segment's front and backdrop sums are kept apart until every spill is in.
+    std::optional<WindowSums> front, back;
+    if (plan.backdrop_tiles > 0) {
+        front.emplace(sums.colour.size());
+        back.emplace(sums.colour.size());
+    }
+    WindowSums& target = front ? *front : sums;
 
     // 3-5. Per tile and subframe: propagate, re-clip, reduce; tiles accumulate their subframes in order.
     // Visibility and the subframe plan above stay global so a window's pixels are bit-identical to the
@@ -278,11 +303,21 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             progress();
             return;
         }
+        const auto& backdrop = plan.backdrop[static_cast<std::size_t>(index)];
+        const bool with_backdrop = n > 0 && !backdrop.empty();
         std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
-        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
+        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n + (with_backdrop ? 1 : 0)));
+        TileSums backdrop_sums;
         const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
         const double half = 0.5 * (te - ts) / std::max(n, 1);
-        tbb::parallel_for(0, n, [&](int k) {
+        tbb::parallel_for(0, n + (with_backdrop ? 1 : 0), [&](int k) {
+            if (k == n) {  // the still backdrop looks the same all segment: one point sample mid-segment
+                const MotionSnapshot snapshot(scene, ctx.projection, 0.5 * (ts + te));
+                ReclipScratch scratch;
+                reclipSubframe(scene, ctx.shader, snapshot, 0.5, layers, backdrop, tile, nullptr, settings.audit,
+                               scratch, backdrop_sums, sub_stats[static_cast<std::size_t>(k)]);
+                return;
+            }
             const double t = times[static_cast<std::size_t>(k)];
             const MotionSnapshot snapshot(scene, ctx.projection, t);
             ReclipScratch scratch;
@@ -317,16 +352,23 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 const std::size_t out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
                 if (still_tile) {
                     const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
-                    sums.colour[out] += weight * still.colour[pixel];
-                    sums.covered[out] += weight * still.covered[pixel];
-                    sums.depth[out] += weight * still.depth[pixel];
+                    target.colour[out] += weight * still.colour[pixel];
+                    target.covered[out] += weight * still.covered[pixel];
+                    target.depth[out] += weight * still.depth[pixel];
                     continue;
                 }
                 const Spill sum = total(x, y);
-                sums.colour[out] += sum.colour * w;
-                sums.covered[out] += sum.covered * w;
-                sums.depth[out] += sum.depth * w;
-                sums.motion[out] += sum.motion * w;
+                target.colour[out] += sum.colour * w;
+                target.covered[out] += sum.covered * w;
+                target.depth[out] += sum.depth * w;
+                target.motion[out] += sum.motion * w;
+                if (with_backdrop) {
+                    const std::size_t i = backdrop_sums.index(x, y);
+                    back->colour[out] += weight * backdrop_sums.colour[i];
+                    back->covered[out] += weight * backdrop_sums.covered[i];
+                    back->depth[out] += weight * backdrop_sums.depth[i];
+                    back->motion[out] += weight * backdrop_sums.motion[i];
+                }
             }
         }
         if (sweeping && n > 0) {
@@ -360,13 +402,14 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     });
     for (const auto& tile_spills : spills) {
         for (const Spill& s : tile_spills) {
-            sums.colour[s.out] += s.colour;
-            sums.covered[s.out] += s.covered;
-            sums.depth[s.out] += s.depth;
-            sums.motion[s.out] += s.motion;
+            target.colour[s.out] += s.colour;
+            target.covered[s.out] += s.covered;
+            target.depth[s.out] += s.depth;
+            target.motion[s.out] += s.motion;
             ++totals.spilled;
         }
     }
+    if (front) compositeBackdrop(*front, *back, weight, sums);
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 }
 
@@ -448,6 +491,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         stats.counts["sweep_positions"] = totals.reclip.sweep_positions;
         stats.counts["sweep_unswept_fragments"] = totals.reclip.sweep_unswept;
         stats.counts["sweep_spilled_pixels"] = totals.spilled;
+        stats.counts["sweep_backdrop_tiles"] = totals.backdrop_tiles;
     }
     if (settings.path_method != PathMethod::Exact) stats.counts["ode_fallbacks"] = totals.reclip.ode_fallbacks;
     stats.counts["triangles"] = embree.stats().triangles;

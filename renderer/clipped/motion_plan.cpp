@@ -1,7 +1,9 @@
 #include "renderer/clipped/motion_plan.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,41 +15,36 @@ namespace clipblur {
 
 namespace {
 
-// Displacements over a segment of one object's fragment triangles near a tile, against where they start:
-// the least-squares affine fit d = D (p - mean p) + mean d gives the displacement gradient D.
-struct DisplacementField {
-    RasterBox box;  // of the displacements
-    double n = 0.0;
-    glm::dvec2 sum_p{0.0}, sum_d{0.0};
-    glm::dmat2 sum_pp{0.0}, sum_dp{0.0};
-
-    void add(const glm::dvec2& p, const glm::dvec2& d) {
-        box.expand(d);
-        n += 1.0;
-        sum_p += p;
-        sum_d += d;
-        sum_pp += glm::outerProduct(p, p);
-        sum_dp += glm::outerProduct(d, p);
+// Under a still camera: takes the fragment triangles of still objects out of `refs` and returns them when
+// every moving one stays nearer than all of them over the segment (depth is affine over a fragment, so
+// its vertices' depth range bounds every point). What moves in front then only changes how much of the
+// backdrop each pixel sees, which the swept coverage gives: no re-clip needs to follow it. A moving
+// fragment reaching the camera plane has no bounded path, so it keeps the tile as it is.
+template <class ObjectOf>
+std::vector<FragmentRef> splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
+                                       const std::vector<char>& still_object, ObjectOf object) {
+    double moving_far = -std::numeric_limits<double>::infinity(), still_near = std::numeric_limits<double>::infinity();
+    bool moving = false, still = false;
+    for (const FragmentRef& ref : refs) {
+        const FragmentMotion& fm = motion[ref.layer][ref.index];
+        if (still_object[object(ref)]) {
+            still = true;
+            still_near = std::min(still_near, fm.min_depth);
+        } else {
+            if (fm.crosses_near) return {};
+            moving = true;
+            moving_far = std::max(moving_far, fm.max_depth);
+        }
     }
-
-    // The part of J = I + D that sweeps do not follow: J less the stretch along the raster axes that
-    // they do (the lengths of J's columns), as a Frobenius norm. Where the positions do not span the
-    // plane (one or two fragments, all in a line) the displacements' spread over the region's diagonal
-    // `extent`, which bounds the whole gradient, stands in.
-    double unstretchedGradient(double extent) const {
-        const double spread = glm::length(box.hi - box.lo) / (std::sqrt(2.0) * extent);
-        if (n < 3.0) return spread;
-        const glm::dvec2 mp = sum_p / n, md = sum_d / n;
-        const glm::dmat2 cpp = sum_pp - n * glm::outerProduct(mp, mp);
-        const glm::dmat2 cdp = sum_dp - n * glm::outerProduct(md, mp);
-        const double det = glm::determinant(cpp);
-        const double trace = cpp[0][0] + cpp[1][1];
-        if (!(det > 1e-6 * trace * trace)) return spread;
-        const glm::dmat2 j = glm::dmat2(1.0) + cdp * glm::inverse(cpp);
-        const glm::dmat2 residual = j - glm::dmat2(glm::length(j[0]), 0.0, 0.0, glm::length(j[1]));
-        return std::sqrt(glm::dot(residual[0], residual[0]) + glm::dot(residual[1], residual[1]));
-    }
-};
+    if (!moving || !still || !(moving_far < still_near)) return {};
+    std::vector<FragmentRef> backdrop;
+    std::erase_if(refs, [&](const FragmentRef& ref) {
+        if (!still_object[object(ref)]) return false;
+        backdrop.push_back(ref);
+        return true;
+    });
+    return backdrop;
+}
 
 }  // namespace
 
@@ -89,9 +86,11 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             if (still_object[t.object]) {
                 FragmentMotion fm;
                 for (const MeshPoint& p : points) {
-                    const glm::dvec2 r = project(open, scene, p).raster;
-                    fm.swept.expand(r);
-                    fm.start += r / 3.0;
+                    const ProjectedPoint q = project(open, scene, p);
+                    fm.swept.expand(q.raster);
+                    fm.start += q.raster / 3.0;
+                    fm.min_depth = std::min(fm.min_depth, q.depth);
+                    fm.max_depth = std::max(fm.max_depth, q.depth);
                 }
                 fm.end = fm.start;
                 m[i] = fm;
@@ -104,6 +103,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
 
     const int count = grid.count();
     plan.refs.resize(static_cast<std::size_t>(count));
+    plan.backdrop.resize(static_cast<std::size_t>(count));
     plan.tiles.resize(static_cast<std::size_t>(count));
     const double size = grid.tileSize();
     for (int layer = 0; layer < 2; ++layer) {
@@ -125,8 +125,11 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
         }
     }
 
+    const auto object = [&](const FragmentRef& ref) { return (*layers.triangles[ref.layer])[ref.index].object; };
     tbb::parallel_for(0, count, [&](int index) {
-        const auto& refs = plan.refs[static_cast<std::size_t>(index)];
+        auto& refs = plan.refs[static_cast<std::size_t>(index)];
+        if (sweep && still_camera)
+            plan.backdrop[static_cast<std::size_t>(index)] = splitBackdrop(refs, motion, still_object, object);
         SubframePlan& p = plan.tiles[static_cast<std::size_t>(index)];
         p = SubframePlan{};
         for (const FragmentRef& ref : refs) {
@@ -159,45 +162,44 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             const auto near = [&](const glm::dvec2& q) {
                 return q.x >= t.x0 - pad && q.x <= t.x1 + pad && q.y >= t.y0 - pad && q.y <= t.y1 + pad;
             };
-            // Per object, the displacements of what is near the tile at the segment's start, and of what is
-            // near it at the end (one group would mix surfaces that pass the tile at different times).
-            std::vector<std::pair<std::uint32_t, DisplacementField>> at_start, at_end;
-            const auto add = [](std::vector<std::pair<std::uint32_t, DisplacementField>>& group, std::uint32_t object,
-                                const glm::dvec2& at, const glm::dvec2& d) {
-                for (auto& [o, field] : group)
-                    if (o == object) return field.add(at, d);
-                group.push_back({object, DisplacementField{}});
-                group.back().second.add(at, d);
+            // Per object, the box of the displacements of what is near the tile at the segment's start, and
+            // of what is near it at the end (one group would mix surfaces that pass the tile at different times).
+            using Displacements = std::vector<std::pair<std::uint32_t, RasterBox>>;
+            Displacements at_start, at_end;
+            const auto add = [](Displacements& group, std::uint32_t object, const glm::dvec2& d) {
+                for (auto& [o, box] : group)
+                    if (o == object) return box.expand(d);
+                group.push_back({object, RasterBox{}});
+                group.back().second.expand(d);
             };
-            double deviation = 0.0;
-            for (const FragmentRef& ref : refs) {
-                const FragmentMotion& fm = motion[ref.layer][ref.index];
-                if (fm.crosses_near) continue;
-                deviation = std::max(deviation, fm.chord_deviation);
-                const std::uint32_t object = (*layers.triangles[ref.layer])[ref.index].object;
-                if (near(fm.start)) add(at_start, object, fm.start, fm.end - fm.start);
-                if (near(fm.end)) add(at_end, object, fm.start, fm.end - fm.start);
-            }
-            // Bounded by the spread of all their displacements once two objects meet.
-            const auto spread = [](const std::vector<std::pair<std::uint32_t, DisplacementField>>& group) {
-                if (group.size() < 2) return 0.0;
-                RasterBox all;
-                for (const auto& [o, field] : group) {
-                    all.expand(field.box.lo);
-                    all.expand(field.box.hi);
-                }
-                return glm::length(all.hi - all.lo);
-            };
-            const double relative = std::max(spread(at_start), spread(at_end));
             constexpr double kChordTolerance = 0.1;  // px
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath), so a surface that turns or shears under them (a roll) is followed to
             // within that part of its displacement gradient times a fragment's size (1 px) per subframe;
-            // keep that at kChordTolerance.
-            double gradient = 0.0;
-            for (const auto* group : {&at_start, &at_end})
-                for (const auto& [o, field] : *group)
-                    gradient = std::max(gradient, field.unstretchedGradient(size + 2.0 * pad));
+            // keep that at kChordTolerance. Each fragment triangle's own open-to-close map gives it (one fit
+            // over an object's triangles near a tile mixed its faces, and was ill-posed where they lay in a
+            // line).
+            double deviation = 0.0, gradient = 0.0;
+            for (const FragmentRef& ref : refs) {
+                const FragmentMotion& fm = motion[ref.layer][ref.index];
+                if (fm.crosses_near) continue;
+                deviation = std::max(deviation, fm.chord_deviation);
+                const bool start = near(fm.start), end = near(fm.end);
+                if (start) add(at_start, object(ref), fm.end - fm.start);
+                if (end) add(at_end, object(ref), fm.end - fm.start);
+                if (start || end) gradient = std::max(gradient, fm.unstretched_gradient);
+            }
+            // Bounded by the spread of all their displacements once two objects meet.
+            const auto spread = [](const Displacements& group) {
+                if (group.size() < 2) return 0.0;
+                RasterBox all;
+                for (const auto& [o, box] : group) {
+                    all.expand(box.lo);
+                    all.expand(box.hi);
+                }
+                return glm::length(all.hi - all.lo);
+            };
+            const double relative = std::max(spread(at_start), spread(at_end));
             p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), gradient / kChordTolerance}),
                                     max_subframes,
                                     &p.capped);
@@ -219,6 +221,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
         }
     }
     for (const SubframePlan& p : plan.tiles) plan.capped_tiles += p.capped ? 1 : 0;
+    for (const auto& b : plan.backdrop) plan.backdrop_tiles += b.empty() ? 0 : 1;
     return plan;
 }
 

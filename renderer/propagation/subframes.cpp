@@ -1,6 +1,7 @@
 #include "renderer/propagation/subframes.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace clipblur {
@@ -31,6 +32,16 @@ namespace {
 void addKeyTimes(std::vector<double>& times, double t0, double t1, const auto& keys) {
     for (const auto& key : keys)
         if (key.time > t0 && key.time < t1) times.push_back(key.time);
+}
+
+// J is the affine map with J (b - a) = (b' - a') and J (c - a) = (c' - a'); a sliver's J says nothing.
+double unstretchedGradient(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close) {
+    const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
+    const double det = e1.x * e2.y - e1.y * e2.x;
+    if (!(std::abs(det) > 1e-6 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return 0.0;
+    const glm::dmat2 j = glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
+    const glm::dmat2 residual = j - glm::dmat2(glm::length(j[0]), 0.0, 0.0, glm::length(j[1]));
+    return std::sqrt(glm::dot(residual[0], residual[0]) + glm::dot(residual[1], residual[1]));
 }
 
 }  // namespace
@@ -80,9 +91,11 @@ double ShutterPathSampler::pathLength(const MeshPoint& point) const {
 
 FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) const {
     FragmentMotion out;
-    double max_speed = 0.0;
+    double max_speed = 0.0, max_depth_rate = 0.0;
     thread_local std::vector<glm::dvec2> positions;
     const double t0 = nodes_.front().snapshot.time;
+    std::array<glm::dvec2, 3> open{}, close{};
+    std::size_t ends = 0;  // vertices with both end positions
     for (const MeshPoint& vertex : vertices) {
         double length = 0.0;
         positions.clear();
@@ -94,6 +107,9 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             }
             positions.push_back(m.point.raster);
             out.swept.expand(m.point.raster);
+            out.min_depth = std::min(out.min_depth, m.point.depth);
+            out.max_depth = std::max(out.max_depth, m.point.depth);
+            max_depth_rate = std::max(max_depth_rate, std::abs(m.depth_rate));
             if (node.weight == 0.0) continue;
             const double speed = glm::length(m.raster_velocity);
             length += node.weight * speed;
@@ -102,6 +118,11 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         out.max_path_pixels = std::max(out.max_path_pixels, length);
         if (positions.size() == nodes_.size() && duration_ > 0.0) {
             const glm::dvec2 a = positions.front(), b = positions.back();
+            if (ends < 3) {
+                open[ends] = a;
+                close[ends] = b;
+            }
+            ++ends;
             out.start += a / double(vertices.size());
             out.end += b / double(vertices.size());
             for (std::size_t i = 0; i < nodes_.size(); ++i) {
@@ -111,10 +132,13 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         }
     }
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
+    if (ends == 3 && vertices.size() == 3) out.unstretched_gradient = unstretchedGradient(open, close);
     if (out.crosses_near) {
         out.swept = RasterBox::everything();
     } else {
         out.swept.pad(max_speed * max_gap_);
+        out.min_depth -= max_depth_rate * max_gap_;
+        out.max_depth += max_depth_rate * max_gap_;
     }
     return out;
 }

@@ -35,6 +35,15 @@ struct FragmentMotion {
     // Largest distance of a sampled vertex position from where uniform straight motion between its
     // open and close positions would put it at that time (curvature and changing speed together).
     double chord_deviation = 0.0;
+    // The part of the affine map carrying a triangle's vertices from open to close that a swept fragment
+    // does not follow (J less the lengths of its columns: rotation and shear), as a Frobenius norm; 0 for a
+    // sliver or when a vertex reaches the camera plane.
+    double unstretched_gradient = 0.0;
+    // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
+    // between samples) as the swept box is. Depth is affine over a planar fragment, so every point of it
+    // stays within this range: what decides whether one surface stays in front of another.
+    double min_depth = std::numeric_limits<double>::infinity();
+    double max_depth = -std::numeric_limits<double>::infinity();
 };
 
 // Samples the exact vertex paths over the shutter [t0, t1]. The shutter is cut at every camera,
