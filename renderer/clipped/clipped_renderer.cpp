@@ -15,6 +15,7 @@
 #include "renderer/clipped/guard_band.h"
 #include "renderer/clipped/motion_plan.h"
 #include "renderer/clipped/shutter_segments.h"
+#include "renderer/clipped/still_backdrop.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
@@ -130,18 +131,28 @@ struct WindowSums {
     explicit WindowSums(std::size_t pixels) : colour(pixels), covered(pixels), depth(pixels), motion(pixels) {}
 };
 
-// A segment with a still backdrop (MotionPlan::backdrop): what moves in front covers a pixel's backdrop
-// for the fraction of the segment its swept coverage gives, so the pixel sees front + (1 - that) x
+// A segment with a still backdrop (MotionPlan::backdrop): what moves in front covers a backdrop tile's
+// pixel for the fraction of the segment its swept coverage gives, so the pixel sees front + (1 - that) x
 // backdrop. Exact where the backdrop is uniform over the part of the pixel the front crosses; an edge of
-// the backdrop under a moving edge in the same pixel is where it is not. front and back carry the
-// segment's weight.
-void compositeBackdrop(const WindowSums& front, const WindowSums& back, double weight, WindowSums& sums) {
-    for (std::size_t i = 0; i < sums.colour.size(); ++i) {
-        const double seen = 1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0);
-        sums.colour[i] += front.colour[i] + seen * back.colour[i];
-        sums.covered[i] += front.covered[i] + seen * back.covered[i];
-        sums.depth[i] += front.depth[i] + seen * back.depth[i];
-        sums.motion[i] += front.motion[i] + seen * back.motion[i];
+// the backdrop under a moving edge in the same pixel is where it is not. `front` carries the segment's
+// weight; the backdrop image (film pixels) is the same for every segment.
+void compositeBackdrop(const WindowSums& front, const PixelSums& backdrop, const MotionPlan& plan,
+                       const TileGrid& grid, const DataWindow& window, int film_w, double weight, WindowSums& sums) {
+    const int size = grid.tileSize();
+    for (int y = window.y0; y < window.y1(); ++y) {
+        for (int x = window.x0; x < window.x1(); ++x) {
+            const std::size_t i = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
+            sums.colour[i] += front.colour[i];
+            sums.covered[i] += front.covered[i];
+            sums.depth[i] += front.depth[i];
+            sums.motion[i] += front.motion[i];
+            if (!plan.backdrop[static_cast<std::size_t>((y / size) * grid.columns() + x / size)]) continue;
+            const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
+            const std::size_t p = static_cast<std::size_t>(y) * film_w + x;
+            sums.colour[i] += seen * backdrop.colour[p];
+            sums.covered[i] += seen * backdrop.covered[p];
+            sums.depth[i] += seen * backdrop.depth[p];
+        }
     }
 }
 
@@ -156,6 +167,7 @@ struct ClippedContext {
     DataWindow window;
     double t0, t1;  // the whole shutter
     const RenderCallbacks& callbacks;
+    const std::vector<char>& backdrop_objects;  // backdropObjects: empty when no backdrop can exist
 };
 
 struct SegmentTotals {
@@ -165,6 +177,9 @@ struct SegmentTotals {
     long long subframes_total = 0, still_tiles = 0, capped_tiles = 0, measured = 0, near_crossings = 0;
     long long backdrop_tiles = 0;
     int max_tile_subframes = 0;
+    double frame_seconds = 0.0, plan_seconds = 0.0, tile_seconds = 0.0;  // where a segment's time goes
+    std::optional<PixelSums> backdrop;  // the still backdrop's image, made when a segment first needs it
+    FrameFragmentStats backdrop_stats;
     int band = 0;
 };
 
@@ -215,6 +230,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     const TileGrid visibility_grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band,
                                    settings.tile_size);
     const FrameFragmentOptions options{settings.visibility_rays, !still_scene, settings.audit};
+    auto stage = Clock::now();
     PixelSums still;
     still.resize(static_cast<std::size_t>(scene.film.width) * scene.film.height);
     FrameFragmentStats open_stats, close_stats;
@@ -227,6 +243,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                     : std::vector<FragmentTriangle>{};
     totals.open.merge(open_stats);
     totals.close.merge(close_stats);
+    totals.frame_seconds += secondsSince(stage);
+    stage = Clock::now();
 
     // 2. Subframes per tile from the fragments' image-plane speeds (eq. 24, corrected).
     FragmentLayers layers;
@@ -243,17 +261,19 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         layers.motion[0] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, open);
         if (both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, close);
     }
-    const MotionPlan plan =
-        planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes, settings.max_subframes, sweeping);
+    const MotionPlan plan = planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes,
+                                       settings.max_subframes, sweeping, ctx.backdrop_objects);
     totals.capped_tiles += plan.capped_tiles;
     totals.measured += plan.measured;
     totals.near_crossings += plan.near_crossings;
     totals.backdrop_tiles += plan.backdrop_tiles;
-    // With a backdrop the segment's front and backdrop sums are kept apart until every spill is in.
-    std::optional<WindowSums> front, back;
+    // With a backdrop the segment's front sums are kept apart until every spill is in.
+    std::optional<WindowSums> front;
     if (plan.backdrop_tiles > 0) {
         front.emplace(sums.colour.size());
-        back.emplace(sums.colour.size());
+        if (!totals.backdrop)
+            totals.backdrop = renderBackdrop(ctx.job, ctx.backdrop_objects, 0.5 * (ctx.t0 + ctx.t1), ctx.projection,
+                                             ctx.grid, ctx.callbacks, totals.backdrop_stats);
     }
     WindowSums& target = front ? *front : sums;
 
@@ -278,6 +298,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         sweeping ? sweepPositions(scene, ctx.projection, layers, ts, te, intervals, settings.sweep_spacing,
                                   settings.max_subframes)
                  : std::vector<int>{};
+    totals.plan_seconds += secondsSince(stage);
+    stage = Clock::now();
     const DataWindow& window = ctx.window;
     const int film_w = scene.film.width, film_h = scene.film.height;
     // Sweep integration: what a tile's fragments leave in other tiles' pixels, added after all tiles in
@@ -303,21 +325,11 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             progress();
             return;
         }
-        const auto& backdrop = plan.backdrop[static_cast<std::size_t>(index)];
-        const bool with_backdrop = n > 0 && !backdrop.empty();
         std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
-        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n + (with_backdrop ? 1 : 0)));
-        TileSums backdrop_sums;
+        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
         const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
         const double half = 0.5 * (te - ts) / std::max(n, 1);
-        tbb::parallel_for(0, n + (with_backdrop ? 1 : 0), [&](int k) {
-            if (k == n) {  // the still backdrop looks the same all segment: one point sample mid-segment
-                const MotionSnapshot snapshot(scene, ctx.projection, 0.5 * (ts + te));
-                ReclipScratch scratch;
-                reclipSubframe(scene, ctx.shader, snapshot, 0.5, layers, backdrop, tile, nullptr, settings.audit,
-                               scratch, backdrop_sums, sub_stats[static_cast<std::size_t>(k)]);
-                return;
-            }
+        tbb::parallel_for(0, n, [&](int k) {
             const double t = times[static_cast<std::size_t>(k)];
             const MotionSnapshot snapshot(scene, ctx.projection, t);
             ReclipScratch scratch;
@@ -362,13 +374,6 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 target.covered[out] += sum.covered * w;
                 target.depth[out] += sum.depth * w;
                 target.motion[out] += sum.motion * w;
-                if (with_backdrop) {
-                    const std::size_t i = backdrop_sums.index(x, y);
-                    back->colour[out] += weight * backdrop_sums.colour[i];
-                    back->covered[out] += weight * backdrop_sums.covered[i];
-                    back->depth[out] += weight * backdrop_sums.depth[i];
-                    back->motion[out] += weight * backdrop_sums.motion[i];
-                }
             }
         }
         if (sweeping && n > 0) {
@@ -409,7 +414,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             ++totals.spilled;
         }
     }
-    if (front) compositeBackdrop(*front, *back, weight, sums);
+    if (front) compositeBackdrop(*front, *totals.backdrop, plan, ctx.grid, window, film_w, weight, sums);
+    totals.tile_seconds += secondsSince(stage);
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 }
 
@@ -427,6 +433,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const EmbreeScene embree(device, scene, t0, t1);
     const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
     const MeshAdjacency adjacency(scene);
+    const std::vector<char> backdrop_objects = backdropObjects(job, t0, t1);
     const ClippedContext ctx{job,
                              embree,
                              shader,
@@ -436,7 +443,8 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                              renderWindow(job),
                              t0,
                              t1,
-                             callbacks};
+                             callbacks,
+                             backdrop_objects};
     RenderResult result;
     RenderStats& stats = result.stats;
     stats.seconds["scene_build"] = secondsSince(start);
@@ -455,6 +463,9 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                       1.0 / segments, s, segments, sums, totals);
     }
     stats.seconds["segments"] = secondsSince(stage);
+    stats.seconds["frame_fragments"] = totals.frame_seconds;
+    stats.seconds["motion_plan"] = totals.plan_seconds;
+    stats.seconds["tiles"] = totals.tile_seconds;
     FrameFragmentStats mid_stats;
     const std::optional<PixelSums> mid = midShutterDepth(job, embree, adjacency, shader, t0, t1, callbacks, mid_stats);
 
@@ -498,8 +509,10 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     recordFrameStats(stats, "open_", totals.open);
     if (both_frames) recordFrameStats(stats, "close_", totals.close);
     if (mid) recordFrameStats(stats, "mid_", mid_stats);
+    if (totals.backdrop) recordFrameStats(stats, "backdrop_", totals.backdrop_stats);
     if (settings.audit) {
         AuditStats audit = totals.open.audit;
+        audit.merge(totals.backdrop_stats.audit);
         audit.merge(totals.close.audit);
         audit.merge(mid_stats.audit);
         audit.merge(totals.reclip.audit);

@@ -15,35 +15,30 @@ namespace clipblur {
 
 namespace {
 
-// Under a still camera: takes the fragment triangles of still objects out of `refs` and returns them when
-// every moving one stays nearer than all of them over the segment (depth is affine over a fragment, so
-// its vertices' depth range bounds every point). What moves in front then only changes how much of the
-// backdrop each pixel sees, which the swept coverage gives: no re-clip needs to follow it. A moving
-// fragment reaching the camera plane has no bounded path, so it keeps the tile as it is.
+// Takes the fragment triangles of backdrop objects out of `refs` when every moving one stays nearer than
+// all of them over the segment (depth is affine over a fragment, so its vertices' depth range bounds every
+// point); true when it did. What moves in front then only changes how much of the backdrop each pixel
+// sees, which the swept coverage gives: no re-clip needs to follow it. A moving fragment reaching the
+// camera plane has no bounded path, so it keeps the tile as it is.
 template <class ObjectOf>
-std::vector<FragmentRef> splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
-                                       const std::vector<char>& still_object, ObjectOf object) {
+bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
+                   const std::vector<char>& backdrop_objects, ObjectOf object) {
     double moving_far = -std::numeric_limits<double>::infinity(), still_near = std::numeric_limits<double>::infinity();
     bool moving = false, still = false;
     for (const FragmentRef& ref : refs) {
         const FragmentMotion& fm = motion[ref.layer][ref.index];
-        if (still_object[object(ref)]) {
+        if (backdrop_objects[object(ref)]) {
             still = true;
             still_near = std::min(still_near, fm.min_depth);
         } else {
-            if (fm.crosses_near) return {};
+            if (fm.crosses_near) return false;
             moving = true;
             moving_far = std::max(moving_far, fm.max_depth);
         }
     }
-    if (!moving || !still || !(moving_far < still_near)) return {};
-    std::vector<FragmentRef> backdrop;
-    std::erase_if(refs, [&](const FragmentRef& ref) {
-        if (!still_object[object(ref)]) return false;
-        backdrop.push_back(ref);
-        return true;
-    });
-    return backdrop;
+    if (!moving || !still || !(moving_far < still_near)) return false;
+    std::erase_if(refs, [&](const FragmentRef& ref) { return backdrop_objects[object(ref)] != 0; });
+    return true;
 }
 
 }  // namespace
@@ -61,7 +56,8 @@ bool cameraIsStill(const Camera& camera, double t0, double t1) {
 }
 
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
-                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep) {
+                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep,
+                      const std::vector<char>& backdrop_objects) {
     const bool still_camera = cameraIsStill(scene.camera, t0, t1);
     std::vector<char> still_object(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
@@ -128,8 +124,8 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
     const auto object = [&](const FragmentRef& ref) { return (*layers.triangles[ref.layer])[ref.index].object; };
     tbb::parallel_for(0, count, [&](int index) {
         auto& refs = plan.refs[static_cast<std::size_t>(index)];
-        if (sweep && still_camera)
-            plan.backdrop[static_cast<std::size_t>(index)] = splitBackdrop(refs, motion, still_object, object);
+        if (sweep && !backdrop_objects.empty())
+            plan.backdrop[static_cast<std::size_t>(index)] = splitBackdrop(refs, motion, backdrop_objects, object);
         SubframePlan& p = plan.tiles[static_cast<std::size_t>(index)];
         p = SubframePlan{};
         for (const FragmentRef& ref : refs) {
@@ -162,15 +158,20 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             const auto near = [&](const glm::dvec2& q) {
                 return q.x >= t.x0 - pad && q.x <= t.x1 + pad && q.y >= t.y0 - pad && q.y <= t.y1 + pad;
             };
-            // Per object, the box of the displacements of what is near the tile at the segment's start, and
-            // of what is near it at the end (one group would mix surfaces that pass the tile at different times).
-            using Displacements = std::vector<std::pair<std::uint32_t, RasterBox>>;
+            // Per object, the boxes of the displacements its fragment triangles near the tile give the
+            // corners of the tile's neighbourhood (each by its own open-to-close map): once two objects
+            // meet, the spread at a corner is how far one moves against the other there. Comparing at
+            // the same place keeps objects turning together (a propeller's blades) apart from objects
+            // moving against each other. What is near the tile at the segment's start and what is near it at
+            // the end form separate groups (one would mix surfaces that pass the tile at different times).
+            const std::array<glm::dvec2, 4> corners{glm::dvec2(t.x0 - pad, t.y0 - pad), glm::dvec2(t.x1 + pad, t.y0 - pad),
+                                                    glm::dvec2(t.x0 - pad, t.y1 + pad), glm::dvec2(t.x1 + pad, t.y1 + pad)};
+            using Displacements = std::vector<std::pair<std::uint32_t, std::array<RasterBox, 4>>>;
             Displacements at_start, at_end;
-            const auto add = [](Displacements& group, std::uint32_t object, const glm::dvec2& d) {
-                for (auto& [o, box] : group)
-                    if (o == object) return box.expand(d);
-                group.push_back({object, RasterBox{}});
-                group.back().second.expand(d);
+            const auto add = [&](Displacements& group, std::uint32_t object, const FragmentMotion& fm) {
+                auto it = std::find_if(group.begin(), group.end(), [&](const auto& g) { return g.first == object; });
+                if (it == group.end()) it = group.insert(group.end(), {object, {}});
+                for (int c = 0; c < 4; ++c) it->second[c].expand(fm.displacementAt(corners[c]));
             };
             constexpr double kChordTolerance = 0.1;  // px
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
@@ -185,19 +186,22 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 if (fm.crosses_near) continue;
                 deviation = std::max(deviation, fm.chord_deviation);
                 const bool start = near(fm.start), end = near(fm.end);
-                if (start) add(at_start, object(ref), fm.end - fm.start);
-                if (end) add(at_end, object(ref), fm.end - fm.start);
+                if (start) add(at_start, object(ref), fm);
+                if (end) add(at_end, object(ref), fm);
                 if (start || end) gradient = std::max(gradient, fm.unstretched_gradient);
             }
-            // Bounded by the spread of all their displacements once two objects meet.
             const auto spread = [](const Displacements& group) {
                 if (group.size() < 2) return 0.0;
-                RasterBox all;
-                for (const auto& [o, box] : group) {
-                    all.expand(box.lo);
-                    all.expand(box.hi);
+                double widest = 0.0;
+                for (int c = 0; c < 4; ++c) {
+                    RasterBox all;
+                    for (const auto& [o, boxes] : group) {
+                        all.expand(boxes[c].lo);
+                        all.expand(boxes[c].hi);
+                    }
+                    widest = std::max(widest, glm::length(all.hi - all.lo));
                 }
-                return glm::length(all.hi - all.lo);
+                return widest;
             };
             const double relative = std::max(spread(at_start), spread(at_end));
             p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), gradient / kChordTolerance}),
@@ -221,7 +225,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
         }
     }
     for (const SubframePlan& p : plan.tiles) plan.capped_tiles += p.capped ? 1 : 0;
-    for (const auto& b : plan.backdrop) plan.backdrop_tiles += b.empty() ? 0 : 1;
+    for (const char b : plan.backdrop) plan.backdrop_tiles += b ? 1 : 0;
     return plan;
 }
 

@@ -12,10 +12,10 @@ namespace clipblur {
 struct MotionPlan {
     std::vector<std::vector<FragmentRef>> refs;  // per tile, layer 0 first, each in index order
     std::vector<SubframePlan> tiles;
-    // Sweep under a still camera, per tile: the fragment triangles of still objects, taken out of refs, when
-    // every moving one that can reach the tile stays nearer than all of them for the whole segment (a still
-    // backdrop). Empty where that does not hold: the tile then re-clips everything together.
-    std::vector<std::vector<FragmentRef>> backdrop;
+    // Per tile: true when its fragment triangles of backdrop objects were taken out of refs, because every
+    // moving one that can reach the tile stays nearer than all of them for the whole segment. Elsewhere the
+    // tile re-clips everything together.
+    std::vector<char> backdrop;
     long long backdrop_tiles = 0;
     long long capped_tiles = 0;
     long long measured = 0;     // fragment triangles whose path was sampled
@@ -26,10 +26,12 @@ struct MotionPlan {
 // that do not move under a still camera are measured at t0 only), bins them to the tiles their swept
 // box overlaps, and plans each tile's subframes (the corrected eq. 24). subframes > 0 forces that count.
 // With `sweep` (render.time_integration: sweep) the count follows relative motion and path curvature, and
-// every moving tile gets the same count; under a still camera, a still backdrop behind everything that moves
-// near a tile is split off (MotionPlan::backdrop) and its motion relative to the rest is not counted.
+// every moving tile gets the same count. With `backdrop_objects` (backdropObjects) a still backdrop behind
+// everything that moves near a tile is split off (MotionPlan::backdrop) and its motion relative to the
+// rest is not counted.
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
-                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep);
+                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep,
+                      const std::vector<char>& backdrop_objects = {});
 
 // Sweep integration: the positions of each of `count` equal intervals of [t0, t1], shared by every fragment
 // (equal times keep shared edges closed) and spaced so that no fragment vertex moves more than `spacing`

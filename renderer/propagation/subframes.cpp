@@ -35,13 +35,15 @@ void addKeyTimes(std::vector<double>& times, double t0, double t1, const auto& k
 }
 
 // J is the affine map with J (b - a) = (b' - a') and J (c - a) = (c' - a'); a sliver's J says nothing.
-double unstretchedGradient(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close) {
+void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close, FragmentMotion& out) {
     const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
     const double det = e1.x * e2.y - e1.y * e2.x;
-    if (!(std::abs(det) > 1e-6 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return 0.0;
+    if (!(std::abs(det) > 1e-6 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return;
     const glm::dmat2 j = glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
+    out.map = j;
+    out.map_offset = close[0] - j * open[0];
     const glm::dmat2 residual = j - glm::dmat2(glm::length(j[0]), 0.0, 0.0, glm::length(j[1]));
-    return std::sqrt(glm::dot(residual[0], residual[0]) + glm::dot(residual[1], residual[1]));
+    out.unstretched_gradient = std::sqrt(glm::dot(residual[0], residual[0]) + glm::dot(residual[1], residual[1]));
 }
 
 }  // namespace
@@ -132,7 +134,8 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         }
     }
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
-    if (ends == 3 && vertices.size() == 3) out.unstretched_gradient = unstretchedGradient(open, close);
+    out.map_offset = out.end - out.start;
+    if (ends == 3 && vertices.size() == 3) affineMotion(open, close, out);
     if (out.crosses_near) {
         out.swept = RasterBox::everything();
     } else {

@@ -35,10 +35,14 @@ struct FragmentMotion {
     // Largest distance of a sampled vertex position from where uniform straight motion between its
     // open and close positions would put it at that time (curvature and changing speed together).
     double chord_deviation = 0.0;
-    // The part of the affine map carrying a triangle's vertices from open to close that a swept fragment
-    // does not follow (J less the lengths of its columns: rotation and shear), as a Frobenius norm; 0 for a
-    // sliver or when a vertex reaches the camera plane.
+    // The affine map carrying a triangle's vertices from open to close, end = J start + offset (a point's
+    // displacement wherever it is on the triangle's plane), and the part of J a swept fragment does not
+    // follow (J less the lengths of its columns: rotation and shear) as a Frobenius norm. For a sliver or
+    // when a vertex reaches the camera plane: the mean displacement everywhere and no gradient.
+    glm::dmat2 map{1.0};
+    glm::dvec2 map_offset{0.0};
     double unstretched_gradient = 0.0;
+    glm::dvec2 displacementAt(const glm::dvec2& p) const { return map * p + map_offset - p; }
     // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
     // between samples) as the swept box is. Depth is affine over a planar fragment, so every point of it
     // stays within this range: what decides whether one surface stays in front of another.
