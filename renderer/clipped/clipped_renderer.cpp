@@ -167,7 +167,7 @@ struct ClippedContext {
     DataWindow window;
     double t0, t1;  // the whole shutter
     const RenderCallbacks& callbacks;
-    const std::vector<char>& backdrop_objects;  // backdropObjects: empty when no backdrop can exist
+    const Backdrop& backdrop;  // findBackdrop: empty when no backdrop can exist
 };
 
 struct SegmentTotals {
@@ -176,10 +176,13 @@ struct SegmentTotals {
     long long spilled = 0;  // sweep: pixel sums one tile's fragments left in another tile's pixels
     long long subframes_total = 0, still_tiles = 0, capped_tiles = 0, measured = 0, near_crossings = 0;
     long long backdrop_tiles = 0;
+    long long frame_sets = 0;  // fragment sets built: one per segment end, the shared ones once
     int max_tile_subframes = 0;
     double frame_seconds = 0.0, plan_seconds = 0.0, tile_seconds = 0.0;  // where a segment's time goes
     std::optional<PixelSums> backdrop;  // the still backdrop's image, made when a segment first needs it
     FrameFragmentStats backdrop_stats;
+    // The last segment's closing set with its still image: the next segment's opening set, at the same time.
+    std::optional<std::pair<std::vector<FragmentTriangle>, PixelSums>> carried;
     int band = 0;
 };
 
@@ -223,26 +226,45 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
 
     // 1. Clipped, shaded fragment sets at the segment's ends, over the image and a guard band wide
-    // enough that everything seen during the segment is in one of them.
-    const int band =
-        guardBandPixels(scene, ctx.projection, ts, te, std::max(scene.film.width, scene.film.height) / 2);
+    // enough that everything seen during the segment is in one of them. A closing set that the next
+    // (equally long) segment opens with is built with that segment's band too, and its still image.
+    const int cap = std::max(scene.film.width, scene.film.height) / 2;
+    const bool carry = both_frames && segment + 1 < segments;
+    int band = guardBandPixels(scene, ctx.projection, ts, te, cap);
     totals.band = std::max(totals.band, band);
-    const TileGrid visibility_grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band,
-                                   settings.tile_size);
-    const FrameFragmentOptions options{settings.visibility_rays, !still_scene, settings.audit};
+    if (carry) band = std::max(band, guardBandPixels(scene, ctx.projection, te, te + (te - ts), cap));
+    const auto grid = [&](int b) {
+        return TileGrid(-b, -b, scene.film.width + 2 * b, scene.film.height + 2 * b, settings.tile_size);
+    };
+    const FrameFragmentOptions options{settings.visibility_rays, !still_scene, settings.audit,
+                                       ctx.backdrop.behind_everything ? &ctx.backdrop.objects : nullptr};
     auto stage = Clock::now();
+    const std::size_t film_pixels = static_cast<std::size_t>(scene.film.width) * scene.film.height;
+    std::vector<FragmentTriangle> open;
     PixelSums still;
-    still.resize(static_cast<std::size_t>(scene.film.width) * scene.film.height);
-    FrameFragmentStats open_stats, close_stats;
-    const std::vector<FragmentTriangle> open = buildFrameFragments(
-        scene, ctx.embree, ctx.adjacency, ctx.projection, visibility_grid, ts, ctx.shader, options, ctx.callbacks,
-        &still, open_stats);
-    const std::vector<FragmentTriangle> close =
-        both_frames ? buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, visibility_grid, te,
-                                          ctx.shader, options, ctx.callbacks, nullptr, close_stats)
-                    : std::vector<FragmentTriangle>{};
-    totals.open.merge(open_stats);
-    totals.close.merge(close_stats);
+    if (totals.carried) {
+        open = std::move(totals.carried->first);
+        still = std::move(totals.carried->second);
+        totals.carried.reset();
+    } else {
+        FrameFragmentStats open_stats;
+        still.resize(film_pixels);
+        open = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), ts, ctx.shader,
+                                   options, ctx.callbacks, &still, open_stats);
+        totals.open.merge(open_stats);
+        ++totals.frame_sets;
+    }
+    std::vector<FragmentTriangle> close;
+    if (both_frames) {
+        FrameFragmentStats close_stats;
+        PixelSums next_still;
+        if (carry) next_still.resize(film_pixels);
+        close = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), te, ctx.shader,
+                                    options, ctx.callbacks, carry ? &next_still : nullptr, close_stats);
+        totals.close.merge(close_stats);
+        ++totals.frame_sets;
+        if (carry) totals.carried.emplace(close, std::move(next_still));
+    }
     totals.frame_seconds += secondsSince(stage);
     stage = Clock::now();
 
@@ -262,7 +284,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         if (both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, close);
     }
     const MotionPlan plan = planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes,
-                                       settings.max_subframes, sweeping, ctx.backdrop_objects);
+                                       settings.max_subframes, sweeping, ctx.backdrop);
     totals.capped_tiles += plan.capped_tiles;
     totals.measured += plan.measured;
     totals.near_crossings += plan.near_crossings;
@@ -272,7 +294,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     if (plan.backdrop_tiles > 0) {
         front.emplace(sums.colour.size());
         if (!totals.backdrop)
-            totals.backdrop = renderBackdrop(ctx.job, ctx.backdrop_objects, 0.5 * (ctx.t0 + ctx.t1), ctx.projection,
+            totals.backdrop = renderBackdrop(ctx.job, ctx.backdrop, 0.5 * (ctx.t0 + ctx.t1), ctx.projection,
                                              ctx.grid, ctx.callbacks, totals.backdrop_stats);
     }
     WindowSums& target = front ? *front : sums;
@@ -429,11 +451,12 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const double t0 = frame + job.shutter.open;
     const double t1 = frame + job.shutter.close;
 
+    // A backdrop behind everything is rendered on its own: rays for the fragment sets need not meet it.
+    const Backdrop backdrop = findBackdrop(job, t0, t1);
     EmbreeDevice device;
-    const EmbreeScene embree(device, scene, t0, t1);
+    const EmbreeScene embree(device, scene, t0, t1, backdrop.behind_everything ? &backdrop.objects : nullptr);
     const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
     const MeshAdjacency adjacency(scene);
-    const std::vector<char> backdrop_objects = backdropObjects(job, t0, t1);
     const ClippedContext ctx{job,
                              embree,
                              shader,
@@ -444,7 +467,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                              t0,
                              t1,
                              callbacks,
-                             backdrop_objects};
+                             backdrop};
     RenderResult result;
     RenderStats& stats = result.stats;
     stats.seconds["scene_build"] = secondsSince(start);
@@ -467,7 +490,10 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.seconds["motion_plan"] = totals.plan_seconds;
     stats.seconds["tiles"] = totals.tile_seconds;
     FrameFragmentStats mid_stats;
-    const std::optional<PixelSums> mid = midShutterDepth(job, embree, adjacency, shader, t0, t1, callbacks, mid_stats);
+    std::optional<EmbreeScene> whole;  // the mid-shutter depth sees the backdrop too
+    if (backdrop.behind_everything && job.output.aov_depth) whole.emplace(device, scene, t0, t1);
+    const std::optional<PixelSums> mid =
+        midShutterDepth(job, whole ? *whole : embree, adjacency, shader, t0, t1, callbacks, mid_stats);
 
     result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(job.output));
     ImageWriter writer(result.image, scene.film.background);
@@ -486,6 +512,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
     stats.counts["tiles"] = ctx.grid.count();
     stats.counts["segments"] = segments;
+    stats.counts["frame_sets"] = totals.frame_sets;
     stats.counts["guard_band_pixels"] = totals.band;
     stats.counts["still_tiles"] = totals.still_tiles;
     stats.counts["subframes_total"] = totals.subframes_total;
@@ -503,6 +530,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         stats.counts["sweep_unswept_fragments"] = totals.reclip.sweep_unswept;
         stats.counts["sweep_spilled_pixels"] = totals.spilled;
         stats.counts["sweep_backdrop_tiles"] = totals.backdrop_tiles;
+        stats.counts["sweep_backdrop_behind_everything"] = backdrop.behind_everything ? 1 : 0;
     }
     if (settings.path_method != PathMethod::Exact) stats.counts["ode_fallbacks"] = totals.reclip.ode_fallbacks;
     stats.counts["triangles"] = embree.stats().triangles;

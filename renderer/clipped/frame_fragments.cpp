@@ -103,6 +103,8 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         std::vector<std::uint32_t> candidates;
         findCandidates(frame, embree, adjacency, projection, tile, index, options.rays_per_side, candidate_scratch,
                        candidates, out.stats.candidates);
+        if (options.leave_out)
+            std::erase_if(candidates, [&](std::uint32_t c) { return (*options.leave_out)[frame.source(c).object] != 0; });
         std::vector<ScreenTriangle> local;
         local.reserve(candidates.size());
         for (std::uint32_t c : candidates) local.push_back(frame.triangles()[c]);

@@ -44,6 +44,8 @@ struct FrameFragmentOptions {
     int rays_per_side = 2;       // Embree candidate rays per pixel side; 0: every binned triangle
     bool keep_triangles = true;  // return the fragment triangles (false: only the still image)
     bool audit = false;          // check every resolved tile's invariants (auditTile)
+    // Per object: leave its triangles out (a still backdrop behind everything, resolved on its own).
+    const std::vector<char>* leave_out = nullptr;
 };
 
 // Section 1 of the paper at one instant: Embree finds the candidate triangles per tile, the clipping

@@ -57,7 +57,7 @@ bool cameraIsStill(const Camera& camera, double t0, double t1) {
 
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
                       const FragmentLayers& layers, int subframes, int max_subframes, bool sweep,
-                      const std::vector<char>& backdrop_objects) {
+                      const Backdrop& backdrop) {
     const bool still_camera = cameraIsStill(scene.camera, t0, t1);
     std::vector<char> still_object(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
@@ -124,8 +124,9 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
     const auto object = [&](const FragmentRef& ref) { return (*layers.triangles[ref.layer])[ref.index].object; };
     tbb::parallel_for(0, count, [&](int index) {
         auto& refs = plan.refs[static_cast<std::size_t>(index)];
-        if (sweep && !backdrop_objects.empty())
-            plan.backdrop[static_cast<std::size_t>(index)] = splitBackdrop(refs, motion, backdrop_objects, object);
+        if (sweep && !backdrop.empty())
+            plan.backdrop[static_cast<std::size_t>(index)] =
+                backdrop.behind_everything || splitBackdrop(refs, motion, backdrop.objects, object);
         SubframePlan& p = plan.tiles[static_cast<std::size_t>(index)];
         p = SubframePlan{};
         for (const FragmentRef& ref : refs) {

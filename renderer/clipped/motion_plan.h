@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "renderer/clipped/still_backdrop.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/propagation/subframes.h"
 #include "renderer/tiles.h"
@@ -26,12 +27,13 @@ struct MotionPlan {
 // that do not move under a still camera are measured at t0 only), bins them to the tiles their swept
 // box overlaps, and plans each tile's subframes (the corrected eq. 24). subframes > 0 forces that count.
 // With `sweep` (render.time_integration: sweep) the count follows relative motion and path curvature, and
-// every moving tile gets the same count. With `backdrop_objects` (backdropObjects) a still backdrop behind
-// everything that moves near a tile is split off (MotionPlan::backdrop) and its motion relative to the
-// rest is not counted.
+// every moving tile gets the same count. With a `backdrop` (findBackdrop), still objects behind everything
+// that moves near a tile are split off there (MotionPlan::backdrop) and their motion relative to the rest is
+// not counted; when they are behind everything all shutter the fragment sets have none of them and every
+// tile is a backdrop tile.
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
                       const FragmentLayers& layers, int subframes, int max_subframes, bool sweep,
-                      const std::vector<char>& backdrop_objects = {});
+                      const Backdrop& backdrop = {});
 
 // Sweep integration: the positions of each of `count` equal intervals of [t0, t1], shared by every fragment
 // (equal times keep shared edges closed) and spaced so that no fragment vertex moves more than `spacing`

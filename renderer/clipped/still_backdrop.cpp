@@ -1,32 +1,75 @@
 #include "renderer/clipped/still_backdrop.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "renderer/clipped/motion_plan.h"
 #include "renderer/visibility/embree_device.h"
 #include "scene/object_motion.h"
 
 namespace clipblur {
 
-std::vector<char> backdropObjects(const RenderJob& job, double t0, double t1) {
+namespace {
+
+// The farthest depth any point of a moving object reaches in [t0, t1] under the still camera `frame`: its
+// origin's depth (linear between transform keys, so extreme at t0, t1 or a key) plus the largest distance
+// of a vertex from the origin (scale and deformation are linear between keys too, so bounded at them).
+double farthestDepth(const Object& object, const CameraFrame& frame, double t0, double t1) {
+    std::vector<double> times{t0, t1};
+    double scale = 0.0;
+    for (const TransformKey& k : object.transform) {
+        if (k.time > t0 && k.time < t1) times.push_back(k.time);
+        scale = std::max({scale, std::abs(k.scale.x), std::abs(k.scale.y), std::abs(k.scale.z)});
+    }
+    if (object.transform.empty()) scale = 1.0;
+    double radius = 0.0;
+    for (const glm::dvec3& p : object.mesh.positions) radius = std::max(radius, glm::length(p));
+    for (const DeformationKey& k : object.deformation)
+        for (const glm::dvec3& p : k.positions) radius = std::max(radius, glm::length(p));
+    double far = -std::numeric_limits<double>::infinity();
+    for (double t : times)
+        far = std::max(far, glm::dot(frame.e3, evalTransform(object.transform, t).translate - frame.position));
+    return far + scale * radius;
+}
+
+}  // namespace
+
+Backdrop findBackdrop(const RenderJob& job, double t0, double t1) {
     const Scene& scene = job.scene;
     if (job.render.time_integration != TimeIntegration::Sweep || job.render.shadows ||
         job.render.method != Method::Clipped || !cameraIsStill(scene.camera, t0, t1))
         return {};
-    std::vector<char> still(scene.objects.size());
-    bool any = false;
+    Backdrop backdrop;
+    backdrop.objects.resize(scene.objects.size());
+    bool still = false, moving = false;
+    const CameraFrame frame = evalCamera(scene.camera, t0);
+    double moving_far = -std::numeric_limits<double>::infinity(), still_near = std::numeric_limits<double>::infinity();
+    std::vector<glm::dvec3> world;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-        still[o] = isStatic(scene.objects[o], t0, t1);
-        any = any || still[o];
+        const Object& object = scene.objects[o];
+        if (object.mesh.triangles.empty()) continue;
+        backdrop.objects[o] = isStatic(object, t0, t1);
+        if (backdrop.objects[o]) {
+            still = true;
+            evalVertices(object, t0, world);
+            for (const glm::dvec3& p : world) still_near = std::min(still_near, glm::dot(frame.e3, p - frame.position));
+        } else {
+            moving = true;
+            moving_far = std::max(moving_far, farthestDepth(object, frame, t0, t1));
+        }
     }
-    return any ? still : std::vector<char>{};
+    if (!still || !moving) return {};
+    backdrop.behind_everything = moving_far < still_near;
+    return backdrop;
 }
 
-PixelSums renderBackdrop(const RenderJob& job, const std::vector<char>& backdrop_objects, double time,
-                         const Projection& projection, const TileGrid& grid, const RenderCallbacks& callbacks,
-                         FrameFragmentStats& stats) {
+PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double time, const Projection& projection,
+                         const TileGrid& grid, const RenderCallbacks& callbacks, FrameFragmentStats& stats) {
     Scene still = job.scene;
     still.objects.clear();
     for (std::size_t o = 0; o < job.scene.objects.size(); ++o)
-        if (backdrop_objects[o]) still.objects.push_back(job.scene.objects[o]);
+        if (backdrop.objects[o]) still.objects.push_back(job.scene.objects[o]);
     const EmbreeDevice device;
     const EmbreeScene embree(device, still, time, time);
     const Shader shader(still, time, time);

@@ -8,17 +8,27 @@
 
 namespace clipblur {
 
-// Sweep integration under a camera that stays still all shutter, without shadows: per object, whether it
-// is still and so can be part of a backdrop (planMotion splits it off behind what moves near a tile).
-// Empty when no backdrop can exist (a moving camera, shadows that moving objects would cast on it, point
-// subframes, or nothing still).
-std::vector<char> backdropObjects(const RenderJob& job, double t0, double t1);
+// Sweep integration under a camera that stays still all shutter, without shadows: the still objects can
+// form a backdrop, split off behind what moves near a tile (planMotion), resolved once as a still frame of
+// their own and composited under the moving surfaces' swept coverage.
+struct Backdrop {
+    std::vector<char> objects;  // per object: still all shutter; empty when no backdrop can exist
+    // Every still object stays behind every moving one all shutter (the moving ones' bounding spheres
+    // against the still ones' vertices): the fragment sets can leave the backdrop out and every tile
+    // composites over it.
+    bool behind_everything = false;
+
+    bool empty() const { return objects.empty(); }
+};
+
+// Empty for a moving camera, shadows (moving objects would cast them on the backdrop), point subframes,
+// or when nothing or everything is still.
+Backdrop findBackdrop(const RenderJob& job, double t0, double t1);
 
 // The backdrop's image: the still objects alone, resolved and shaded as a still frame. With no light
 // moving and no shadows it looks the same at every time, and since nothing else is in it, the parts that
 // moving objects hide at both ends of a segment are there too (the frame-0 / frame-1 union misses them).
-PixelSums renderBackdrop(const RenderJob& job, const std::vector<char>& backdrop_objects, double time,
-                         const Projection& projection, const TileGrid& grid, const RenderCallbacks& callbacks,
-                         FrameFragmentStats& stats);
+PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double time, const Projection& projection,
+                         const TileGrid& grid, const RenderCallbacks& callbacks, FrameFragmentStats& stats);
 
 }  // namespace clipblur

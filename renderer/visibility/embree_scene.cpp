@@ -82,7 +82,9 @@ void checkMesh(const Object& object) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1) : t0_(t0), t1_(t1) {
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1,
+                         const std::vector<char>* leave_out)
+    : t0_(t0), t1_(t1) {
     if (!(t1 >= t0)) throw Error(ExitCode::Render, "shutter window must satisfy t0 <= t1");
     scene_.reset(rtcNewScene(device.get()));
     device.check("creating a scene");
@@ -95,7 +97,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double 
     std::vector<std::vector<glm::dvec3>> mids;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const Object& object = scene.objects[o];
-        if (object.mesh.triangles.empty()) continue;
+        if (object.mesh.triangles.empty() || (leave_out && (*leave_out)[o])) continue;
         checkMesh(object);
         const std::size_t nv = object.mesh.positions.size();
 

@@ -46,7 +46,9 @@ class EmbreeScene {
 public:
     static constexpr double kMaxChordErrorPixels = 0.1;
 
-    EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1);
+    // `leave_out` (per object, optional): objects not to add, such as a still backdrop rendered on its own.
+    EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1,
+                const std::vector<char>* leave_out = nullptr);
     EmbreeScene(EmbreeScene&& other) noexcept = default;
     EmbreeScene& operator=(EmbreeScene&& other) noexcept = default;
     EmbreeScene(const EmbreeScene&) = delete;

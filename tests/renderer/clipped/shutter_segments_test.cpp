@@ -5,6 +5,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "renderer/clipped/shutter_segments.h"
+#include "renderer/render.h"
 #include "renderer/test_scenes.h"
 
 namespace clipblur {
@@ -49,6 +50,22 @@ TEST(ShutterSegments, CameraTurnSetsTheCount) {
         CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(std::sin(a), 0, std::cos(a)), glm::dvec3(0, 1, 0)});
     EXPECT_NEAR(largestTurn(job.scene, 0.0, 1.0), a, 1e-9);
     EXPECT_EQ(shutterSegments(job.scene, 0.0, 1.0, 0, 16), 7);
+}
+
+// Neighbouring segments meet at one time, so the set closing one opens the next: S segments build S + 1
+// fragment sets, and a still last segment builds none of its own.
+TEST(ShutterSegments, NeighboursShareTheirEndSet) {
+    RenderJob job = test::squareFilmJob();
+    job.render.method = Method::Clipped;
+    Object quad = test::rasterQuad(2, 2, 20, 20, 5.0);
+    quad.transform = {TransformKey{0.0, glm::dvec3(0.0), aboutY(0), glm::dvec3(1.0)},
+                      TransformKey{0.5, glm::dvec3(0.0), aboutY(20), glm::dvec3(1.0)}};
+    job.scene.objects.push_back(quad);
+    job.render.segments = 2;  // the second half of the shutter is still
+    EXPECT_EQ(renderFrame(job, 0).stats.counts.at("frame_sets"), 2);
+    job.scene.objects[0].transform.push_back(TransformKey{1.0, glm::dvec3(0.0), aboutY(40), glm::dvec3(1.0)});
+    job.render.segments = 3;
+    EXPECT_EQ(renderFrame(job, 0).stats.counts.at("frame_sets"), 4);
 }
 
 }  // namespace clipblur

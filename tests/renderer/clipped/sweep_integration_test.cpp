@@ -215,34 +215,40 @@ TEST(SweepIntegration, StillBackdropNeedsNoReclips) {
 // less in RMS). Point subframes with the same single segment miss the hidden wall: pixels near the bar's
 // ends at t = 0 see the black background for most of the shutter instead of the white wall.
 TEST(SweepIntegration, BackdropHasWhatBothFramesHide) {
-    RenderJob job = squareFilmJob();
-    Material orange;
-    orange.base_color = glm::dvec3(0.9, 0.5, 0.1);
-    job.scene.materials.push_back(orange);
-    job.scene.objects.push_back(rasterQuad(0.0, 0.0, 32.0, 32.0, 10.0));
-    Object bar = rasterQuad(2.0, 14.5, 30.0, 17.5, 6.0);
-    bar.material = 1;
-    const glm::dvec3 z(0, 0, 1);
-    for (int k = 0; k <= 4; ++k)  // keys every 45 degrees: slerp between antipodal keys is undefined
-        bar.transform.push_back(TransformKey{k / 4.0, glm::dvec3(0.0), glm::angleAxis(k * 0.25 * glm::pi<double>(), z),
-                                             glm::dvec3(1.0)});
-    job.scene.objects.push_back(bar);
-    job.render.method = Method::Accumulation;
-    job.render.samples = 512;
-    const RenderResult reference = renderFrame(job, 0);
+    // The bar's bounding sphere about its pivot, the camera (its ends are |(5.25, 0.56, 6)| = 8.0 away),
+    // reaches past a wall at 7.5 but not one at 10: per-tile backdrops (the bar itself stays at depth 6),
+    // then one behind everything, which the fragment sets leave out.
+    for (const auto& [wall_depth, behind_everything] : {std::pair{7.5, 0}, {10.0, 1}}) {
+        RenderJob job = squareFilmJob();
+        Material orange;
+        orange.base_color = glm::dvec3(0.9, 0.5, 0.1);
+        job.scene.materials.push_back(orange);
+        job.scene.objects.push_back(rasterQuad(0.0, 0.0, 32.0, 32.0, wall_depth));
+        Object bar = rasterQuad(2.0, 14.5, 30.0, 17.5, 6.0);
+        bar.material = 1;
+        const glm::dvec3 z(0, 0, 1);
+        for (int k = 0; k <= 4; ++k)  // keys every 45 degrees: slerp between antipodal keys is undefined
+            bar.transform.push_back(TransformKey{k / 4.0, glm::dvec3(0.0),
+                                                 glm::angleAxis(k * 0.25 * glm::pi<double>(), z), glm::dvec3(1.0)});
+        job.scene.objects.push_back(bar);
+        job.render.method = Method::Accumulation;
+        job.render.samples = 512;
+        const RenderResult reference = renderFrame(job, 0);
 
-    job.render.method = Method::Clipped;
-    job.render.segments = 1;
-    job.render.time_integration = TimeIntegration::Sweep;
-    const RenderResult sweep = renderFrame(job, 0);
-    EXPECT_GT(sweep.stats.counts.at("sweep_backdrop_tiles"), 0);
-    EXPECT_LT(rmsDifference(sweep, reference), 0.01);
-    EXPECT_LT(maxDifference(sweep, reference), 0.1);
+        job.render.method = Method::Clipped;
+        job.render.segments = 1;
+        job.render.time_integration = TimeIntegration::Sweep;
+        const RenderResult sweep = renderFrame(job, 0);
+        EXPECT_GT(sweep.stats.counts.at("sweep_backdrop_tiles"), 0);
+        EXPECT_EQ(sweep.stats.counts.at("sweep_backdrop_behind_everything"), behind_everything);
+        EXPECT_LT(rmsDifference(sweep, reference), 0.01) << wall_depth;
+        EXPECT_LT(maxDifference(sweep, reference), 0.1) << wall_depth;
 
-    job.render.time_integration = TimeIntegration::Subframes;
-    job.render.subframes = 64;
-    const RenderResult point = renderFrame(job, 0);
-    EXPECT_GT(maxDifference(point, reference), 0.3) << "the union of both frames misses the wall behind the bar";
+        job.render.time_integration = TimeIntegration::Subframes;
+        job.render.subframes = 64;
+        const RenderResult point = renderFrame(job, 0);
+        EXPECT_GT(maxDifference(point, reference), 0.3) << "the union of both frames misses the wall behind the bar";
+    }
 }
 
 // A textured backdrop is where compositing by coverage is not exact: in a pixel holding both a moving
