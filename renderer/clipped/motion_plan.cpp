@@ -167,12 +167,18 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             // the end form separate groups (one would mix surfaces that pass the tile at different times).
             const std::array<glm::dvec2, 4> corners{glm::dvec2(t.x0 - pad, t.y0 - pad), glm::dvec2(t.x1 + pad, t.y0 - pad),
                                                     glm::dvec2(t.x0 - pad, t.y1 + pad), glm::dvec2(t.x1 + pad, t.y1 + pad)};
-            using Displacements = std::vector<std::pair<std::uint32_t, std::array<RasterBox, 4>>>;
+            // A sliver's map is unknown and its mean displacement is not what the tile's corners do, so an
+            // object's slivers count only where it has no other triangle there (an object of wires).
+            struct ObjectDisplacements {
+                std::uint32_t object;
+                std::array<RasterBox, 4> mapped, slivers;
+            };
+            using Displacements = std::vector<ObjectDisplacements>;
             Displacements at_start, at_end;
             const auto add = [&](Displacements& group, std::uint32_t object, const FragmentMotion& fm) {
-                auto it = std::find_if(group.begin(), group.end(), [&](const auto& g) { return g.first == object; });
-                if (it == group.end()) it = group.insert(group.end(), {object, {}});
-                for (int c = 0; c < 4; ++c) it->second[c].expand(fm.displacementAt(corners[c]));
+                auto it = std::find_if(group.begin(), group.end(), [&](const auto& g) { return g.object == object; });
+                if (it == group.end()) it = group.insert(group.end(), {object, {}, {}});
+                for (int c = 0; c < 4; ++c) (fm.mapped ? it->mapped : it->slivers)[c].expand(fm.displacementAt(corners[c]));
             };
             constexpr double kChordTolerance = 0.1;  // px
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
@@ -196,9 +202,10 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 double widest = 0.0;
                 for (int c = 0; c < 4; ++c) {
                     RasterBox all;
-                    for (const auto& [o, boxes] : group) {
-                        all.expand(boxes[c].lo);
-                        all.expand(boxes[c].hi);
+                    for (const ObjectDisplacements& d : group) {
+                        const RasterBox& box = d.mapped[c].empty() ? d.slivers[c] : d.mapped[c];
+                        all.expand(box.lo);
+                        all.expand(box.hi);
                     }
                     widest = std::max(widest, glm::length(all.hi - all.lo));
                 }

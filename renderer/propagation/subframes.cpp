@@ -42,6 +42,7 @@ void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::d
     const glm::dmat2 j = glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
     out.map = j;
     out.map_offset = close[0] - j * open[0];
+    out.mapped = true;
     const glm::dmat2 residual = j - glm::dmat2(glm::length(j[0]), 0.0, 0.0, glm::length(j[1]));
     out.unstretched_gradient = std::sqrt(glm::dot(residual[0], residual[0]) + glm::dot(residual[1], residual[1]));
 }

@@ -41,6 +41,7 @@ struct FragmentMotion {
     // when a vertex reaches the camera plane: the mean displacement everywhere and no gradient.
     glm::dmat2 map{1.0};
     glm::dvec2 map_offset{0.0};
+    bool mapped = false;  // map is the triangle's own, not the mean displacement
     double unstretched_gradient = 0.0;
     glm::dvec2 displacementAt(const glm::dvec2& p) const { return map * p + map_offset - p; }
     // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
