@@ -127,29 +127,32 @@ void addTextured(const ConvexPolygon& piece, const glm::dvec3& colour,
     textured.push_back({piece, colour});
 }
 
-// Sweep: adds the tile's recorded footprints into `out`, sized to the pixels they reach (within
+// Sweep: adds the tile's swept polygons into `out`, sized to the pixels their footprints reach (within
 // sweep.box, which bounds them). Sizing it by sweep.box alone allocated and cleared up to a film's worth
 // of pixels per tile and subframe when a fast fragment made the bound large (a dolly with few re-clips).
 void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipScratch& scratch, TileSums& out) {
     Tile box = tile;
-    for (const PixelWeight& w : scratch.footprint) {
-        box.x0 = std::min(box.x0, w.x);
-        box.y0 = std::min(box.y0, w.y);
-        box.x1 = std::max(box.x1, w.x + 1);
-        box.y1 = std::max(box.y1, w.y + 1);
+    for (const SweptPolygon& p : scratch.swept) {
+        const Bounds2 b = sweptBounds(p.polygon, p.path, p.positions);
+        box.x0 = std::min(box.x0, static_cast<int>(std::floor(b.lo.x)));
+        box.y0 = std::min(box.y0, static_cast<int>(std::floor(b.lo.y)));
+        box.x1 = std::max(box.x1, static_cast<int>(std::ceil(b.hi.x)));
+        box.y1 = std::max(box.y1, static_cast<int>(std::ceil(b.hi.y)));
     }
     box = {std::max(box.x0, sweep.box.x0), std::max(box.y0, sweep.box.y0), std::min(box.x1, sweep.box.x1),
            std::min(box.y1, sweep.box.y1)};
     out.reset(box);
-    for (std::size_t e = 0; e < scratch.footprint.size(); ++e) {
-        const PixelWeight& w = scratch.footprint[e];
-        const SweptPayload& p = scratch.swept[scratch.footprint_owner[e]];
-        const std::size_t i = out.index(w.x, w.y);
-        out.colour[i] += w.weight * p.colour;
-        if (!p.coverage) continue;
-        out.covered[i] += w.weight;
-        out.motion[i] += w.weight * p.motion;
-        if (p.inv_depth > 0.0) out.depth[i] += w.weight / p.inv_depth;
+    for (const SweptPolygon& p : scratch.swept) {
+        const auto add = [&](int x, int y, double w) {
+            if (!out.contains(x, y)) return;  // beyond sweep.box: the plan bounds every path inside it
+            const std::size_t i = out.index(x, y);
+            out.colour[i] += w * p.colour;
+            if (!p.coverage) return;
+            out.covered[i] += w;
+            out.motion[i] += w * p.motion;
+            if (p.inv_depth > 0.0) out.depth[i] += w / p.inv_depth;
+        };
+        forEachSweptCell(p.polygon, p.path, p.positions, add);
     }
 }
 
@@ -174,8 +177,6 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                 scratch.fragments);
     if (audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
     if (!sweep) out.reset(tile);
-    scratch.footprint.clear();
-    scratch.footprint_owner.clear();
     scratch.swept.clear();
     for (int y = region.y0; y < region.y1; ++y) {
         for (int x = region.x0; x < region.x1; ++x) {
@@ -249,15 +250,10 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     ++stats.sweep_unswept;
                 }
                 stats.sweep_positions += positions;
-                // Footprints are kept until the tile's last fragment: only then is the box they reach known.
-                const auto sweepInto = [&](const ConvexPolygon& q, const SweptPayload& payload) {
-                    scratch.swept.push_back(payload);
-                    sweptFootprint(q, shift, positions, scratch.footprint);
-                    scratch.footprint_owner.resize(scratch.footprint.size(),
-                                                   static_cast<std::uint32_t>(scratch.swept.size() - 1));
-                };
-                sweepInto(polygon, {colour, motion, inv_depth, true});
-                for (const auto& [piece, piece_colour] : scratch.textured) sweepInto(piece, {piece_colour, {}, 0.0, false});
+                // Swept after the tile's last fragment: only then is the box they reach known.
+                scratch.swept.push_back({polygon, shift, positions, colour, motion, inv_depth, true});
+                for (const auto& [piece, piece_colour] : scratch.textured)
+                    scratch.swept.push_back({piece, shift, positions, piece_colour, {}, 0.0, false});
             }
         }
     }

@@ -68,9 +68,12 @@ struct SweepInterval {
     Tile resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
     Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
 };
-// Sweep: what one swept polygon adds per px^2 of its footprint. Texture pieces add only their colour
-// difference (coverage false); fragments add colour, coverage, motion and depth.
-struct SweptPayload {
+// Sweep: one polygon to sweep and what it adds per px^2 of its footprint. Texture pieces add only their
+// colour difference (coverage false); fragments add colour, coverage, motion and depth.
+struct SweptPolygon {
+    ConvexPolygon polygon;
+    SweepPath path;
+    int positions = 1;
     glm::dvec3 colour{0.0};
     glm::dvec2 motion{0.0};
     double inv_depth = 0.0;
@@ -82,9 +85,7 @@ struct ReclipScratch {
     std::vector<FragmentRef> origin;      // per screen triangle
     std::vector<SourceTriangle> sources;  // per screen triangle: its vertices on the mesh triangle
     std::vector<ShadedPiece> pieces;
-    std::vector<PixelWeight> footprint;           // sweep: every footprint of the tile, in fragment order
-    std::vector<std::uint32_t> footprint_owner;   // per footprint entry: its index in `swept`
-    std::vector<SweptPayload> swept;
+    std::vector<SweptPolygon> swept;  // sweep: the tile's polygons, in fragment order
     std::vector<std::pair<ConvexPolygon, glm::dvec3>> textured;  // sweep: pieces with their colour per px^2
     std::vector<glm::dvec4> stretch;  // sweep: per screen triangle, x and y stretch at the interval's ends
     TileScratch tile;
