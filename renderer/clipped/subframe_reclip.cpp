@@ -189,10 +189,22 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                 glm::dvec3 colour(0.0);
                 glm::dvec2 motion(0.0);
                 scratch.textured.clear();
+                // Both frames' copies of one triangle of a still object shade alike (Shader::sameFromBoth):
+                // one shading serves the pair, the mix weights summing to 1.
+                const auto shadeOnce = [&] {
+                    const SourceTriangle& a = scratch.sources[fragment.sources[0].source];
+                    const SourceTriangle& b = scratch.sources[fragment.sources[1].source];
+                    return a.object == b.object && a.triangle == b.triangle &&
+                           shader.sameFromBoth(a.object, a.triangle, layers.eye[0], layers.eye[1]);
+                };
+                const bool shade_once = fragment.source_count == 2 && shadeOnce();
                 for (int k = 0; k < fragment.source_count; ++k) {
                     const std::uint32_t s = fragment.sources[k].source;
                     const FragmentRef ref = scratch.origin[s];
-                    const double m = fragment.mix(k);
+                    if (!layers.motion[ref.layer].empty())
+                        motion += fragment.mix(k) * glm::dvec2(layers.motion[ref.layer][ref.index]);
+                    if (shade_once && k == 1) continue;
+                    const double m = shade_once ? 1.0 : fragment.mix(k);
                     // The piece is where this source's surface is now; it is shaded as its frame saw it.
                     scratch.pieces.clear();
                     shadeFragment(polygon, scratch.screen[s], scratch.sources[s], shader, layers.time[ref.layer],
@@ -218,7 +230,6 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     } else if (area > 0.0) {
                         colour += m * sum / area;
                     }
-                    if (!layers.motion[ref.layer].empty()) motion += m * glm::dvec2(layers.motion[ref.layer][ref.index]);
                 }
                 const std::uint32_t first = fragment.sources[0].source;
                 const glm::dvec2 c = centroid(polygon);
