@@ -151,68 +151,57 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             // surface does smoothly (a pan, a roll, a dolly) needs no re-clip. What is left to subframes is
             // how far different objects move relative to each other (what one hides of another changes:
             // at most a pixel per subframe, as eq. 24), and how far a path leaves the parabola a sweep
-            // follows (a path's deviation from its chord over the segment, which for smooth paths the
-            // parabola's error falls below as the cube of the count). Self-occlusion inside one object is
+            // follows (measured for one interval over the segment: the path's distance from the parabola
+            // through its positions at the segment's ends and middle, a third-order error that for smooth
+            // paths falls as the cube of the count; the chord's deviation, used before, is second-order
+            // and asked for 4 re-clips on a pan that one serves as well). Self-occlusion inside one object is
             // left to curvature, deformation (below) and shutter segments.
             const Tile t = grid.tile(index);
             const double pad = 0.5 * size;
             const auto near = [&](const glm::dvec2& q) {
                 return q.x >= t.x0 - pad && q.x <= t.x1 + pad && q.y >= t.y0 - pad && q.y <= t.y1 + pad;
             };
-            // Per object, the boxes of the displacements its fragment triangles near the tile give the
-            // corners of the tile's neighbourhood (each by its own open-to-close map): once two objects
-            // meet, the spread at a corner is how far one moves against the other there. Comparing at
-            // the same place keeps objects turning together (a propeller's blades) apart from objects
-            // moving against each other. What is near the tile at the segment's start and what is near it at
-            // the end form separate groups (one would mix surfaces that pass the tile at different times).
-            const std::array<glm::dvec2, 4> corners{glm::dvec2(t.x0 - pad, t.y0 - pad), glm::dvec2(t.x1 + pad, t.y0 - pad),
-                                                    glm::dvec2(t.x0 - pad, t.y1 + pad), glm::dvec2(t.x1 + pad, t.y1 + pad)};
-            // A sliver's map is unknown and its mean displacement is not what the tile's corners do, so an
-            // object's slivers count only where it has no other triangle there (an object of wires).
-            struct ObjectDisplacements {
-                std::uint32_t object;
-                std::array<RasterBox, 4> mapped, slivers;
-            };
-            using Displacements = std::vector<ObjectDisplacements>;
+            // Per object, the box of the displacements of what is near the tile at the segment's start, and
+            // of what is near it at the end (one group would mix surfaces that pass the tile at different
+            // times). Comparing each object's field at the tile's corners instead (a triangle's turn
+            // extrapolated) kept a propeller's co-turning blades apart but made a turning bar next to a
+            // sliding box look far faster against it than where they meet.
+            using Displacements = std::vector<std::pair<std::uint32_t, RasterBox>>;
             Displacements at_start, at_end;
-            const auto add = [&](Displacements& group, std::uint32_t object, const FragmentMotion& fm) {
-                auto it = std::find_if(group.begin(), group.end(), [&](const auto& g) { return g.object == object; });
-                if (it == group.end()) it = group.insert(group.end(), {object, {}, {}});
-                for (int c = 0; c < 4; ++c) (fm.mapped ? it->mapped : it->slivers)[c].expand(fm.displacementAt(corners[c]));
+            const auto add = [](Displacements& group, std::uint32_t object, const glm::dvec2& d) {
+                for (auto& [o, box] : group)
+                    if (o == object) return box.expand(d);
+                group.push_back({object, RasterBox{}});
+                group.back().second.expand(d);
             };
             constexpr double kChordTolerance = 0.1;  // px
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath), so a surface that turns or shears under them (a roll) is followed to
-            // within that part of its displacement gradient times a fragment's size (1 px) per subframe;
-            // keep that at kChordTolerance. Each fragment triangle's own open-to-close map gives it (one fit
-            // over an object's triangles near a tile mixed its faces, and was ill-posed where they lay in a
-            // line).
-            double deviation = 0.0, gradient = 0.0;
+            // within FragmentMotion::unstretched_error over the segment, that / n per subframe; keep it at
+            // kChordTolerance. Each fragment triangle's own open-to-close map gives it (one fit over an
+            // object's triangles near a tile mixed its faces, and was ill-posed where they lay in a line).
+            double deviation = 0.0, unstretched = 0.0;
             for (const FragmentRef& ref : refs) {
                 const FragmentMotion& fm = motion[ref.layer][ref.index];
                 if (fm.crosses_near) continue;
-                deviation = std::max(deviation, fm.chord_deviation);
+                deviation = std::max(deviation, fm.parabola_deviation);
                 const bool start = near(fm.start), end = near(fm.end);
-                if (start) add(at_start, object(ref), fm);
-                if (end) add(at_end, object(ref), fm);
-                if (start || end) gradient = std::max(gradient, fm.unstretched_gradient);
+                if (start) add(at_start, object(ref), fm.end - fm.start);
+                if (end) add(at_end, object(ref), fm.end - fm.start);
+                if (start || end) unstretched = std::max(unstretched, fm.unstretched_error);
             }
+            // Bounded by the spread of all their displacements once two objects meet.
             const auto spread = [](const Displacements& group) {
                 if (group.size() < 2) return 0.0;
-                double widest = 0.0;
-                for (int c = 0; c < 4; ++c) {
-                    RasterBox all;
-                    for (const ObjectDisplacements& d : group) {
-                        const RasterBox& box = d.mapped[c].empty() ? d.slivers[c] : d.mapped[c];
-                        all.expand(box.lo);
-                        all.expand(box.hi);
-                    }
-                    widest = std::max(widest, glm::length(all.hi - all.lo));
+                RasterBox all;
+                for (const auto& [o, box] : group) {
+                    all.expand(box.lo);
+                    all.expand(box.hi);
                 }
-                return widest;
+                return glm::length(all.hi - all.lo);
             };
             const double relative = std::max(spread(at_start), spread(at_end));
-            p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), gradient / kChordTolerance}),
+            p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), unstretched / kChordTolerance}),
                                     max_subframes,
                                     &p.capped);
         }

@@ -34,24 +34,29 @@ void addKeyTimes(std::vector<double>& times, double t0, double t1, const auto& k
         if (key.time > t0 && key.time < t1) times.push_back(key.time);
 }
 
-// J is the affine map with J (b - a) = (b' - a') and J (c - a) = (c' - a'); a sliver's J says nothing.
+// J is the affine map with J (b - a) = (b' - a') and J (c - a) = (c' - a'). A sliver's J says little:
+// where motion is not affine (a camera turn is a homography), the part of the displacement that bends
+// along its length is divided by its width. Triangles thinner than about 1:10 are left out
+// (det / (|e1|^2 + |e2|^2) is 0.5 for a right isosceles one).
 void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close, FragmentMotion& out) {
     const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
     const double det = e1.x * e2.y - e1.y * e2.x;
-    if (!(std::abs(det) > 1e-6 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return;
+    if (!(std::abs(det) > 0.05 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return;
     const glm::dmat2 j = glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
-    out.map = j;
-    out.map_offset = close[0] - j * open[0];
-    out.mapped = true;
     const glm::dmat2 residual = j - glm::dmat2(glm::length(j[0]), 0.0, 0.0, glm::length(j[1]));
-    out.unstretched_gradient = std::sqrt(glm::dot(residual[0], residual[0]) + glm::dot(residual[1], residual[1]));
+    for (const glm::dvec2& e : {e1, e2, open[2] - open[1]}) {
+        const double length = glm::length(e);
+        if (length > 0.0)
+            out.unstretched_error =
+                std::max(out.unstretched_error, glm::length(residual * e) / length * std::min(length, std::sqrt(2.0)));
+    }
 }
 
 }  // namespace
 
 ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
                                        int intervals_per_piece, double near_depth)
-    : scene_(&scene), duration_(std::max(0.0, t1 - t0)) {
+    : scene_(&scene), middle_(scene, projection, 0.5 * (t0 + t1), near_depth), duration_(std::max(0.0, t1 - t0)) {
     breakpoints_.push_back(t0);
     addKeyTimes(breakpoints_, t0, t1, scene.camera.keys);
     for (const Object& object : scene.objects) {
@@ -128,14 +133,19 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             ++ends;
             out.start += a / double(vertices.size());
             out.end += b / double(vertices.size());
-            for (std::size_t i = 0; i < nodes_.size(); ++i) {
-                const double u = (nodes_[i].snapshot.time - t0) / duration_;
-                out.chord_deviation = std::max(out.chord_deviation, glm::length(positions[i] - (a + u * (b - a))));
+            const ProjectedPoint mid = project(middle_, *scene_, vertex);
+            if (!mid.behind) {
+                // The parabola through (0, a), (1/2, m), (1, b): a + u (4m - 3a - b) + u^2 (2a - 4m + 2b).
+                const glm::dvec2 m = mid.raster, linear = 4.0 * m - 3.0 * a - b, quadratic = 2.0 * (a + b) - 4.0 * m;
+                for (std::size_t i = 0; i < nodes_.size(); ++i) {
+                    const double u = (nodes_[i].snapshot.time - t0) / duration_;
+                    out.parabola_deviation =
+                        std::max(out.parabola_deviation, glm::length(positions[i] - (a + u * linear + u * u * quadratic)));
+                }
             }
         }
     }
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
-    out.map_offset = out.end - out.start;
     if (ends == 3 && vertices.size() == 3) affineMotion(open, close, out);
     if (out.crosses_near) {
         out.swept = RasterBox::everything();

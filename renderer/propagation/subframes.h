@@ -32,18 +32,16 @@ struct FragmentMotion {
     double max_sweep_pixels = 0.0;
     bool crosses_near = false;      // a vertex reaches the camera plane: swept is the whole plane
     glm::dvec2 start{0.0}, end{0.0};  // mean raster position of the vertices at shutter open and close
-    // Largest distance of a sampled vertex position from where uniform straight motion between its
-    // open and close positions would put it at that time (curvature and changing speed together).
-    double chord_deviation = 0.0;
-    // The affine map carrying a triangle's vertices from open to close, end = J start + offset (a point's
-    // displacement wherever it is on the triangle's plane), and the part of J a swept fragment does not
-    // follow (J less the lengths of its columns: rotation and shear) as a Frobenius norm. For a sliver or
-    // when a vertex reaches the camera plane: the mean displacement everywhere and no gradient.
-    glm::dmat2 map{1.0};
-    glm::dvec2 map_offset{0.0};
-    bool mapped = false;  // map is the triangle's own, not the mean displacement
-    double unstretched_gradient = 0.0;
-    glm::dvec2 displacementAt(const glm::dvec2& p) const { return map * p + map_offset - p; }
+    // Largest distance of a sampled vertex position from the parabola in time through its positions at
+    // open, mid-shutter and close: what a sweep with one interval misses of the path (a third-order
+    // error, so for smooth paths it falls as the cube of the interval count).
+    double parabola_deviation = 0.0;
+    // What a sweep, which moves a fragment rigidly and stretches it along the raster axes (S, the lengths
+    // of the columns of the affine map J carrying the triangle's vertices from open to close), misses of
+    // the triangle's motion over the shutter: the largest |(J - S) e| over its edges e, each shortened to
+    // at most a pixel's diagonal (a fragment is a piece of it within one pixel), in pixels. 0 for a sliver
+    // or when a vertex reaches the camera plane.
+    double unstretched_error = 0.0;
     // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
     // between samples) as the swept box is. Depth is affine over a planar fragment, so every point of it
     // stays within this range: what decides whether one surface stays in front of another.
@@ -82,6 +80,7 @@ private:
     const Scene* scene_;
     std::vector<double> breakpoints_;
     std::vector<Node> nodes_;  // in time order
+    MotionSnapshot middle_;    // at (t0 + t1) / 2, for the parabola
     double max_gap_ = 0.0;
     double duration_ = 0.0;
 };

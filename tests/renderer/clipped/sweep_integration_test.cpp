@@ -89,7 +89,9 @@ TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
         EXPECT_EQ(sweep.stats.counts.at("subframes_max_per_tile"), intervals);
         EXPECT_LT(maxDifference(sweep, point), kFloatTolerance) << intervals << " x " << positions;
         EXPECT_EQ(sweep.stats.counts.at("sweep_unswept_fragments"), 0);
-        if (positions > 1) EXPECT_GT(sweep.stats.counts.at("sweep_spilled_pixels"), 0) << "8-pixel tiles";
+        if (positions > 1) {
+            EXPECT_GT(sweep.stats.counts.at("sweep_spilled_pixels"), 0) << "8-pixel tiles";
+        }
     }
 }
 
@@ -147,6 +149,23 @@ TEST(SweepIntegration, AutoReclipsFollowRollButNotStretch) {
     const RenderResult rolled = renderFrame(roll, 0);
     EXPECT_EQ(rolled.stats.counts.at("segments"), 1);
     EXPECT_GE(rolled.stats.counts.at("subframes_max_per_tile"), 4);
+}
+
+// A tilt of 0.05 rad turns the image by a homography: every fragment shears by at most x/f x 0.05 <= 0.05
+// (x/f <= 1 with a 90 degree field of view), half the 0.1 the gradient rule allows per re-clip, and a
+// point's path is nearly a parabola (what the chord rule used before did not credit); so one re-clip.
+TEST(SweepIntegration, AutoReclipsOnceForATilt) {
+    RenderJob job = stripedJob();
+    Object wall = rasterQuad(-40.0, -40.0, 104.0, 104.0, 10.0, 64);
+    wall.material = 1;
+    job.scene.film.width = job.scene.film.height = 64;
+    job.scene.objects.push_back(wall);
+    job.scene.camera.keys.push_back(
+        CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, std::sin(0.05), std::cos(0.05)), glm::dvec3(0, 1, 0)});
+    job.render.time_integration = TimeIntegration::Sweep;
+    const RenderResult tilted = renderFrame(job, 0);
+    EXPECT_EQ(tilted.stats.counts.at("segments"), 1);
+    EXPECT_EQ(tilted.stats.counts.at("subframes_max_per_tile"), 1);
 }
 
 // Where one moving surface slides over another, what is hidden changes within an interval and a sweep
