@@ -92,6 +92,17 @@ def sweep_overrides(rung):
     return o
 
 
+# The other sweep ladder: re-clips as `auto` picks them (what a user runs) and only the positions refined,
+# SWEEP_SPACING_1 / r pixels apart at rung r. Where visibility does not change between re-clips (a camera
+# pan) the error is the positions' alone, and the re-clip-coupled ladder above pays for re-clips that do
+# not lower it.
+def sweep_spacing_overrides(rung):
+    o = {"render.method": "clipped", "render.time_integration": "sweep"}
+    if rung != "auto":
+        o["render.sweep_spacing"] = SWEEP_SPACING_1 / int(rung)
+    return o
+
+
 def render(clipblur, config, overrides, image, threads=0):
     """Renders one frame; returns the stats JSON as a dict."""
     image = Path(image)

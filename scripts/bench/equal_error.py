@@ -6,7 +6,8 @@ disocclusion scene, at 1280x720):
   1. stochastic at 256 spp twice, with seeds s1 and s2: the time, and e256, the error one such render
      has against the exact image;
   2. per clipped variant (--methods): `clipped`, the paper's point subframes on the ladder 1, 2, 4, ...
-     subframes, and `sweep`, sweep integration with rung r re-clips and positions 8/r px apart; each
+     subframes, `sweep`, sweep integration with rung r re-clips and positions 8/r px apart, and
+     `sweep_spacing`, sweep integration with `auto` re-clips and positions 8/r px apart; each
      until its error is at most e256 (or --max-rung), and `auto`: time, subframes, fragments per
      subframe, peak memory and the error e_c of each rung;
   3. each variant's time at e256, interpolated in log-log along its ladder, and the ratio
@@ -65,7 +66,8 @@ RATIO_GOAL = 5.0
 THREAD_GOAL = 1.8
 # The clipped variants the ladders run: the paper's point subframes (rung = subframes) and sweep
 # integration (rung = re-clips, with positions benchlib.SWEEP_SPACING_1 / rung pixels apart).
-METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "sweep": benchlib.sweep_overrides}
+METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "sweep": benchlib.sweep_overrides,
+           "sweep_spacing": benchlib.sweep_spacing_overrides}
 # Both seeds differ from benchlib.REFERENCE_SEED and from each other: independent sample streams.
 DEFAULT_SEEDS = (1001, 2002)
 
@@ -272,7 +274,9 @@ def main():
     ap.add_argument("--height", type=int, default=720)
     ap.add_argument("--seeds", default=",".join(map(str, DEFAULT_SEEDS)), help="the two stochastic seeds, s1,s2")
     ap.add_argument("--max-rung", type=int, default=1024, help="largest fixed subframe count of the clipped ladder")
-    ap.add_argument("--methods", default="clipped,sweep", help="clipped variants to ladder: clipped, sweep")
+    ap.add_argument("--methods", default="clipped,sweep",
+                    help="clipped variants to ladder: clipped, sweep (re-clips and positions refined together), "
+                         "sweep_spacing (auto re-clips, positions refined)")
     ap.add_argument("--threads", type=int, default=0, help="render threads of the main runs (0: all cores)")
     ap.add_argument("--threads-check", choices=("on", "off"), default="on",
                     help="also time the rung reaching e256 and stochastic at 1 and 2 threads")
