@@ -125,11 +125,13 @@ TEST(SweepIntegration, DollyMatchesPointSubframes) {
 
 // Auto re-clips with sweeps: a stretch along the raster axes is followed by the sweep itself, so a dolly
 // needs re-clips only for its paths' curvature, while a roll (which sweeps do not follow inside a
-// fragment) still needs one per 0.1 of its displacement gradient. Dolly: depth 5 -> 10 halves the image
-// about its centre; the gradient would ask for |1/2 - 1| / 0.1 = 5 re-clips, the curvature (a point x0 px
-// from the centre is off uniform motion by x0 (3/4 - 2/3) = x0 / 12 <= 1.4 px at mid-shutter, cube rule
-// at 0.1 px) for ceil(cbrt(14)) = 3. Roll by 0.25 rad: J = R, whose columns have length 1, so all of
-// |R - I| = 2 sqrt(2) sin(0.125) = 0.35 is left: ceil(3.5) = 4.
+// fragment) still needs one per 0.1 px it moves a pixel-diagonal edge off. Dolly: depth 5 -> 10 halves
+// the image about its centre; counting the stretch would ask for |1/2 - 1| / 0.1 = 5 re-clips, while a
+// point x0 px from the centre, at x0 / (1 + t), is off the parabola through t = 0, 1/2, 1 by at most
+// 0.0134 x0 <= 0.27 px for the quad's corners, x0 <= 14 sqrt 2 (cube rule at 0.1 px: ceil(cbrt(2.7)) = 2
+// re-clips; the chord rule used before gave 3). Roll by
+// 0.25 rad: J = R, whose columns have length 1, so all of R - I is left, and it moves an edge of length
+// sqrt 2 by 2 sin(0.125) sqrt 2 = 0.35 px: ceil(3.5) = 4.
 TEST(SweepIntegration, AutoReclipsFollowRollButNotStretch) {
     RenderJob dolly = squareFilmJob();
     dolly.render.method = Method::Clipped;
