@@ -129,6 +129,14 @@ struct WindowSums {
     std::vector<glm::dvec2> motion;
 
     explicit WindowSums(std::size_t pixels) : colour(pixels), covered(pixels), depth(pixels), motion(pixels) {}
+
+    // Adds scale x one pixel's sums to pixel i.
+    void add(std::size_t i, double scale, const glm::dvec3& c, double cov, double d, const glm::dvec2& m = {}) {
+        colour[i] += scale * c;
+        covered[i] += scale * cov;
+        depth[i] += scale * d;
+        motion[i] += scale * m;
+    }
 };
 
 // A segment with a still backdrop (MotionPlan::backdrop): what moves in front covers a backdrop tile's
@@ -142,16 +150,11 @@ void compositeBackdrop(const WindowSums& front, const PixelSums& backdrop, const
     for (int y = window.y0; y < window.y1(); ++y) {
         for (int x = window.x0; x < window.x1(); ++x) {
             const std::size_t i = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
-            sums.colour[i] += front.colour[i];
-            sums.covered[i] += front.covered[i];
-            sums.depth[i] += front.depth[i];
-            sums.motion[i] += front.motion[i];
+            sums.add(i, 1.0, front.colour[i], front.covered[i], front.depth[i], front.motion[i]);
             if (!plan.backdrop[static_cast<std::size_t>((y / size) * grid.columns() + x / size)]) continue;
             const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
             const std::size_t p = static_cast<std::size_t>(y) * film_w + x;
-            sums.colour[i] += seen * backdrop.colour[p];
-            sums.covered[i] += seen * backdrop.covered[p];
-            sums.depth[i] += seen * backdrop.depth[p];
+            sums.add(i, seen, backdrop.colour[p], backdrop.covered[p], backdrop.depth[p]);
         }
     }
 }
@@ -214,9 +217,10 @@ SweepInterval sweepInterval(const Tile& tile, const SubframePlan& plan, int n, i
 
 // The paper's method over one shutter segment [ts, te]: fragment sets at both ends, per-tile subframes,
 // propagation, re-clip and shading; adds weight x (the segment's average) to `sums`. `subframes` > 0
-// fixes this segment's count.
+// fixes this segment's count. `bands`: every segment's guard band (guardBandPixels), in order.
 void renderSegment(const ClippedContext& ctx, double ts, double te, int subframes, double weight, int segment,
-                   int segments, WindowSums& sums, SegmentTotals& totals) {
+                   const std::vector<int>& bands, WindowSums& sums, SegmentTotals& totals) {
+    const int segments = static_cast<int>(bands.size());
     const Scene& scene = ctx.job.scene;
     const RenderSettings& settings = ctx.job.render;
     // Model no more than the scene needs: when nothing moves (and the subframe count is automatic) the
@@ -227,12 +231,11 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
 
     // 1. Clipped, shaded fragment sets at the segment's ends, over the image and a guard band wide
     // enough that everything seen during the segment is in one of them. A closing set that the next
-    // (equally long) segment opens with is built with that segment's band too, and its still image.
-    const int cap = std::max(scene.film.width, scene.film.height) / 2;
+    // segment opens with is built with that segment's band too, and its still image.
     const bool carry = both_frames && segment + 1 < segments;
-    int band = guardBandPixels(scene, ctx.projection, ts, te, cap);
+    int band = bands[static_cast<std::size_t>(segment)];
     totals.band = std::max(totals.band, band);
-    if (carry) band = std::max(band, guardBandPixels(scene, ctx.projection, te, te + (te - ts), cap));
+    if (carry) band = std::max(band, bands[static_cast<std::size_t>(segment) + 1]);
     const auto grid = [&](int b) {
         return TileGrid(-b, -b, scene.film.width + 2 * b, scene.film.height + 2 * b, settings.tile_size);
     };
@@ -386,16 +389,11 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 const std::size_t out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
                 if (still_tile) {
                     const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
-                    target.colour[out] += weight * still.colour[pixel];
-                    target.covered[out] += weight * still.covered[pixel];
-                    target.depth[out] += weight * still.depth[pixel];
+                    target.add(out, weight, still.colour[pixel], still.covered[pixel], still.depth[pixel]);
                     continue;
                 }
                 const Spill sum = total(x, y);
-                target.colour[out] += sum.colour * w;
-                target.covered[out] += sum.covered * w;
-                target.depth[out] += sum.depth * w;
-                target.motion[out] += sum.motion * w;
+                target.add(out, w, sum.colour, sum.covered, sum.depth, sum.motion);
             }
         }
         if (sweeping && n > 0) {
@@ -429,10 +427,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     });
     for (const auto& tile_spills : spills) {
         for (const Spill& s : tile_spills) {
-            target.colour[s.out] += s.colour;
-            target.covered[s.out] += s.covered;
-            target.depth[s.out] += s.depth;
-            target.motion[s.out] += s.motion;
+            target.add(s.out, 1.0, s.colour, s.covered, s.depth, s.motion);
             ++totals.spilled;
         }
     }
@@ -478,12 +473,16 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const int segments = both_frames ? shutterSegments(scene, t0, t1, settings.segments, settings.max_segments) : 1;
     WindowSums sums(static_cast<std::size_t>(ctx.window.width) * ctx.window.height);
     SegmentTotals totals;
+    const auto segmentTime = [&](int s) { return t0 + (t1 - t0) * s / segments; };
+    std::vector<int> bands(static_cast<std::size_t>(segments));
+    for (int s = 0; s < segments; ++s)
+        bands[static_cast<std::size_t>(s)] = guardBandPixels(scene, ctx.projection, segmentTime(s), segmentTime(s + 1),
+                                                             std::max(scene.film.width, scene.film.height) / 2);
     for (int s = 0; s < segments; ++s) {
         const int fixed = settings.subframes > 0
                               ? std::max(1, settings.subframes * (s + 1) / segments - settings.subframes * s / segments)
                               : 0;
-        renderSegment(ctx, t0 + (t1 - t0) * s / segments, t0 + (t1 - t0) * (s + 1) / segments, fixed,
-                      1.0 / segments, s, segments, sums, totals);
+        renderSegment(ctx, segmentTime(s), segmentTime(s + 1), fixed, 1.0 / segments, s, bands, sums, totals);
     }
     stats.seconds["segments"] = secondsSince(stage);
     stats.seconds["frame_fragments"] = totals.frame_seconds;
