@@ -247,7 +247,7 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
                     const ProjectedPoint a = project(begin, scene, vertices[i]), m = project(middle, scene, vertices[i]),
                                          b = project(end, scene, vertices[i]);
                     if (a.behind || m.behind || b.behind) continue;
-                    const SweepPath path{b.raster - a.raster, 0.5 * (a.raster + b.raster) - m.raster};
+                    const SweepPath path = SweepPath::through(a.raster, a.depth, m.raster, m.depth, b.raster, b.depth);
                     farthest = std::max(farthest, 2.0 * path.reach());
                 }
                 return farthest;

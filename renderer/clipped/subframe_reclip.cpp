@@ -70,9 +70,9 @@ void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdeProp
     if (n == 4) addScreenTriangle(snapshot, {w[0], w[2], w[3]}, {t.object, t.triangle, {b[0], b[2], b[3]}}, ref, weight, scratch);
 }
 
-// The path of the surface point seen at the fragment's centroid `at` over the interval: its exact
-// positions at the interval's ends and `at` itself (sample: the centroid on the source screen triangle).
-// Nullopt when the point is behind the camera at either end.
+// The path of the surface point seen at the fragment's centroid `at` over the interval: through its exact
+// positions and depths at the interval's ends and `at` itself (sample: the centroid on the source screen
+// triangle). Nullopt when the point is behind the camera at either end.
 std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& sweep, const SourceTriangle& source,
                                    const SourceSample& sample, const glm::dvec2& at) {
     glm::dvec3 bary(0.0);
@@ -80,11 +80,7 @@ std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& swee
     const MeshPoint point{source.object, source.triangle, bary};
     const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
     if (a.behind || b.behind) return std::nullopt;
-    SweepPath path;
-    path.chord = b.raster - a.raster;
-    path.bend = 0.5 * (a.raster + b.raster) - at;
-    path.pivot = at;
-    return path;
+    return SweepPath::through(a.raster, a.depth, at, 1.0 / sample.inv_depth, b.raster, b.depth);
 }
 
 // How much the surface under a screen triangle stretches along each raster axis at the interval's start
@@ -143,16 +139,21 @@ void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipS
            std::min(box.y1, sweep.box.y1)};
     out.reset(box);
     for (const SweptPolygon& p : scratch.swept) {
-        const auto add = [&](int x, int y, double w) {
-            if (!out.contains(x, y)) return;  // beyond sweep.box: the plan bounds every path inside it
+        // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
+        if (!p.coverage) {
+            forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w) {
+                if (out.contains(x, y)) out.colour[out.index(x, y)] += w * p.colour;
+            });
+            continue;
+        }
+        forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w) {
+            if (!out.contains(x, y)) return;
             const std::size_t i = out.index(x, y);
             out.colour[i] += w * p.colour;
-            if (!p.coverage) return;
             out.covered[i] += w;
             out.motion[i] += w * p.motion;
-            if (p.inv_depth > 0.0) out.depth[i] += w / p.inv_depth;
-        };
-        forEachSweptCell(p.polygon, p.path, p.positions, add);
+            out.depth[i] += w * p.depth;
+        });
     }
 }
 
@@ -254,15 +255,14 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     shift = *path;
                     glm::dvec4& stretch = scratch.stretch[first];
                     if (std::isnan(stretch.x)) stretch = surfaceStretch(scene, *sweep, scratch.screen[first], scratch.sources[first]);
-                    shift.stretch_chord = glm::dvec2(stretch.z, stretch.w) - glm::dvec2(stretch.x, stretch.y);
-                    shift.stretch_bend = 0.5 * (glm::dvec2(stretch.x, stretch.y) + glm::dvec2(stretch.z, stretch.w)) - 1.0;
+                    shift.setStretch(glm::dvec2(stretch.x, stretch.y), glm::dvec2(stretch.z, stretch.w));
                     if (shift.moves()) positions = sweep->positions;
                 } else {
                     ++stats.sweep_unswept;
                 }
                 stats.sweep_positions += positions;
                 // Swept after the tile's last fragment: only then is the box they reach known.
-                scratch.swept.push_back({polygon, shift, positions, colour, motion, inv_depth, true});
+                scratch.swept.push_back({polygon, shift, positions, colour, motion, sampled ? 1.0 / inv_depth : 0.0, true});
                 for (const auto& [piece, piece_colour] : scratch.textured)
                     scratch.swept.push_back({piece, shift, positions, piece_colour, {}, 0.0, false});
             }

@@ -76,7 +76,7 @@ struct SweptPolygon {
     int positions = 1;
     glm::dvec3 colour{0.0};
     glm::dvec2 motion{0.0};
-    double inv_depth = 0.0;
+    double depth = 0.0;  // 0 where unknown: adds nothing to the depth sums
     bool coverage = true;
 };
 

@@ -18,23 +18,45 @@ struct PixelWeight {
     double weight = 0.0;  // covered area, px^2
 };
 
-// A translation over an interval, s in [-1/2, 1/2]: the parabola through offset 0 at s = 0 and the
-// offsets -chord/2 + bend and chord/2 + bend at the ends. Three exact positions of a point give it; the
-// straight chord alone would cut the corner of a curved path (a rolling camera) by `bend`.
-// Optionally a stretch about `pivot` (the point the translation is of): per raster axis the factor
-// 1 + s stretch_chord + 4 s^2 stretch_bend, the parabola through 1 at s = 0 and the surface's stretch at
-// the ends, so a fragment on a surface the camera dollies away from shrinks with it.
+// A translation over an interval, s in [-1/2, 1/2], of the point `pivot` (seen at s = 0). Its
+// homogeneous raster coordinates (raster x depth, depth) follow the parabola through their exact values at
+// the ends and the middle; the raster position is their ratio:
+//     offset(s) = (s chord + 4 s^2 bend) / w(s),   w(s) = 1 + s depth_chord + 4 s^2 depth_bend,
+// w being the point's depth relative to its depth at s = 0. Homogeneous coordinates are linear in the
+// point's camera-space position, so under camera and object translation (a pan, a dolly, objects sliding)
+// the parabola is exact (a straight line, bend 0) and so is the path; only rotation leaves a third-order
+// error. With depth_chord = depth_bend = 0 it is the raster parabola through the three positions.
+// Optionally a stretch about the pivot: per raster axis the factor (1 + s stretch_chord + 4 s^2
+// stretch_bend) / w(s), through 1 at s = 0 and the surface's stretch at the ends, so a fragment on a
+// surface the camera dollies away from shrinks with it (exactly so for a surface facing the camera).
 struct SweepPath {
     glm::dvec2 chord{0.0};
     glm::dvec2 bend{0.0};
     glm::dvec2 pivot{0.0};
     glm::dvec2 stretch_chord{0.0};
     glm::dvec2 stretch_bend{0.0};
+    double depth_chord = 0.0;
+    double depth_bend = 0.0;
 
-    glm::dvec2 at(double s) const { return s * chord + (4.0 * s * s) * bend; }
-    glm::dvec2 stretchAt(double s) const { return glm::dvec2(1.0) + s * stretch_chord + (4.0 * s * s) * stretch_bend; }
+    // The path of a point at raster positions a, m, b and depths za, zm, zb (all > 0) at s = -1/2, 0, 1/2.
+    static SweepPath through(const glm::dvec2& a, double za, const glm::dvec2& m, double zm, const glm::dvec2& b,
+                             double zb);
+    double depthAt(double s) const { return 1.0 + s * depth_chord + (4.0 * s * s) * depth_bend; }
+    glm::dvec2 at(double s) const { return (s * chord + (4.0 * s * s) * bend) / depthAt(s); }
+    glm::dvec2 stretchAt(double s) const {
+        return (glm::dvec2(1.0) + s * stretch_chord + (4.0 * s * s) * stretch_bend) / depthAt(s);
+    }
+    // Offset and stretch at s with one division (what each swept position needs).
+    void place(double s, glm::dvec2& offset, glm::dvec2& stretch) const {
+        const double q = 4.0 * s * s, inv = 1.0 / (1.0 + s * depth_chord + q * depth_bend);
+        offset = (s * chord + q * bend) * inv;
+        stretch = (glm::dvec2(1.0) + s * stretch_chord + q * stretch_bend) * inv;
+    }
+    // Sets the stretch so that it is `open` at s = -1/2 and `close` at s = 1/2.
+    void setStretch(const glm::dvec2& open, const glm::dvec2& close);
     bool moves() const;
-    // Farthest offset of the pivot from the start: |chord| / 2 + |bend| bounds it.
+    // Bounds the pivot's offset over the interval: (|chord| / 2 + |bend|) / (least w); infinity when w
+    // reaches 0 (the point would cross the camera plane).
     double reach() const;
 };
 
@@ -160,8 +182,9 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
     if (axisAlignedRectangle(q)) {
         const Bounds2 box = q.bounds();
         for (int k = 0; k < m; ++k) {
-            const double s = (k + 0.5) / m - 0.5;
-            const glm::dvec2 at = path.pivot + path.at(s), stretch = path.stretchAt(s);
+            glm::dvec2 offset, stretch;
+            path.place((k + 0.5) / m - 0.5, offset, stretch);
+            const glm::dvec2 at = path.pivot + offset;
             const glm::dvec2 lo = at + stretch * (box.lo - path.pivot), hi = at + stretch * (box.hi - path.pivot);
             cellOverlaps(lo.y, hi.y, [&](int y, double h) {
                 cellOverlaps(lo.x, hi.x, [&](int x, double w) { add(x, y, w * h * scale); });
@@ -172,8 +195,9 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
     SmallPolygon moved;
     moved.n = q.n;
     for (int k = 0; k < m; ++k) {
-        const double s = (k + 0.5) / m - 0.5;
-        const glm::dvec2 at = path.pivot + path.at(s), stretch = path.stretchAt(s);
+        glm::dvec2 offset, stretch;
+        path.place((k + 0.5) / m - 0.5, offset, stretch);
+        const glm::dvec2 at = path.pivot + offset;
         for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
         polygonCells(moved, scale, add);
     }

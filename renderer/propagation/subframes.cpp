@@ -1,5 +1,7 @@
 #include "renderer/propagation/subframes.h"
 
+#include "renderer/geometry/swept_footprint.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -100,7 +102,7 @@ double ShutterPathSampler::pathLength(const MeshPoint& point) const {
 FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) const {
     FragmentMotion out;
     double max_speed = 0.0, max_depth_rate = 0.0;
-    thread_local std::vector<glm::dvec2> positions;
+    thread_local std::vector<glm::dvec3> positions;  // raster x, y and depth
     const double t0 = nodes_.front().snapshot.time;
     std::array<glm::dvec2, 3> open{}, close{};
     std::size_t ends = 0;  // vertices with both end positions
@@ -113,7 +115,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
                 out.crosses_near = true;
                 continue;
             }
-            positions.push_back(m.point.raster);
+            positions.push_back(glm::dvec3(m.point.raster, m.point.depth));
             out.swept.expand(m.point.raster);
             out.min_depth = std::min(out.min_depth, m.point.depth);
             out.max_depth = std::max(out.max_depth, m.point.depth);
@@ -125,7 +127,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         }
         out.max_path_pixels = std::max(out.max_path_pixels, length);
         if (positions.size() == nodes_.size() && duration_ > 0.0) {
-            const glm::dvec2 a = positions.front(), b = positions.back();
+            const glm::dvec2 a(positions.front()), b(positions.back());
             if (ends < 3) {
                 open[ends] = a;
                 close[ends] = b;
@@ -135,12 +137,15 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             out.end += b / double(vertices.size());
             const ProjectedPoint mid = project(middle_, *scene_, vertex);
             if (!mid.behind) {
-                // The parabola through (0, a), (1/2, m), (1, b): a + u (4m - 3a - b) + u^2 (2a - 4m + 2b).
-                const glm::dvec2 m = mid.raster, linear = 4.0 * m - 3.0 * a - b, quadratic = 2.0 * (a + b) - 4.0 * m;
+                // What a one-interval sweep follows (SweepPath: the homogeneous parabola through the
+                // positions and depths at open, mid-shutter and close), at u = s + 1/2.
+                const SweepPath path = SweepPath::through(a, positions.front().z, mid.raster, mid.depth, b,
+                                                          positions.back().z);
+                if (!std::isfinite(path.reach())) out.parabola_deviation = std::numeric_limits<double>::infinity();
                 for (std::size_t i = 0; i < nodes_.size(); ++i) {
-                    const double u = (nodes_[i].snapshot.time - t0) / duration_;
-                    out.parabola_deviation =
-                        std::max(out.parabola_deviation, glm::length(positions[i] - (a + u * linear + u * u * quadratic)));
+                    const double s = (nodes_[i].snapshot.time - t0) / duration_ - 0.5;
+                    out.parabola_deviation = std::max(
+                        out.parabola_deviation, glm::length(glm::dvec2(positions[i]) - (mid.raster + path.at(s))));
                 }
             }
         }

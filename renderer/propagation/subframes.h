@@ -32,9 +32,9 @@ struct FragmentMotion {
     double max_sweep_pixels = 0.0;
     bool crosses_near = false;      // a vertex reaches the camera plane: swept is the whole plane
     glm::dvec2 start{0.0}, end{0.0};  // mean raster position of the vertices at shutter open and close
-    // Largest distance of a sampled vertex position from the parabola in time through its positions at
-    // open, mid-shutter and close: what a sweep with one interval misses of the path (a third-order
-    // error, so for smooth paths it falls as the cube of the interval count).
+    // Largest distance of a sampled vertex position from the path a sweep with one interval follows
+    // (SweepPath::through its positions and depths at open, mid-shutter and close): a third-order error,
+    // so for smooth paths it falls as the cube of the interval count; 0 for paths under translation alone.
     double parabola_deviation = 0.0;
     // What a sweep, which moves a fragment rigidly and stretches it along the raster axes (S, the lengths
     // of the columns of the affine map J carrying the triangle's vertices from open to close), misses of
