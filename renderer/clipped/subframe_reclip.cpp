@@ -123,6 +123,61 @@ void addTextured(const ConvexPolygon& piece, const glm::dvec3& colour,
     textured.push_back({piece, colour});
 }
 
+// Sweep: a pixel whose fragments are all of one object and together fill an axis-aligned rectangle
+// (mostly the whole pixel, cut only where the two frames' triangulations of one surface cross it) is
+// swept as that rectangle, with the largest fragment's path and colour; the other fragments add only
+// their colour differences (none on a flat-shaded surface). The rectangle takes the separable fast path,
+// where each cut piece took the general one at several times the cost. Within a pixel one object's
+// surface moves alike to well under a pixel, so one path serves the pixel; the AOVs take the fragments'
+// area-weighted means. `swept` holds the pixel's entries from `begin` on.
+void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector<SweptPolygon>& staging) {
+    std::size_t count = 0, base = begin;
+    double area = 0.0, largest = -1.0;
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    glm::dvec2 motion(0.0);
+    double depth = 0.0;
+    for (std::size_t i = begin; i < swept.size(); ++i) {
+        const SweptPolygon& e = swept[i];
+        if (!e.coverage) continue;
+        ++count;
+        const double a = e.polygon.area();
+        area += a;
+        motion += a * e.motion;
+        depth += a * e.depth;
+        const Bounds2 b = e.polygon.bounds();
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+        if (a > largest) {
+            largest = a;
+            base = i;
+        }
+    }
+    // Non-overlapping pieces whose areas add up to their bounding box's (to rounding) fill it.
+    const double box_area = (hi.x - lo.x) * (hi.y - lo.y);
+    if (count < 2 || !(std::abs(box_area - area) <= 1e-9 * box_area)) return;
+    staging.clear();
+    SweptPolygon rectangle = swept[base];
+    rectangle.polygon.clear();
+    for (const glm::dvec2& corner : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)}) rectangle.polygon.push(corner);
+    rectangle.motion = motion / area;
+    rectangle.depth = depth / area;
+    staging.push_back(rectangle);
+    for (std::size_t i = begin; i < swept.size(); ++i) {
+        SweptPolygon e = swept[i];
+        e.path = rectangle.path;
+        e.positions = rectangle.positions;
+        if (e.coverage) {
+            if (i == base) continue;
+            e.colour -= rectangle.colour;
+            if (e.colour == glm::dvec3(0.0)) continue;
+            e.coverage = false;
+        }
+        staging.push_back(e);
+    }
+    swept.resize(begin);
+    swept.insert(swept.end(), staging.begin(), staging.end());
+}
+
 // Sweep: adds the tile's swept polygons into `out`, sized to the pixels their footprints reach (within
 // sweep.box, which bounds them). Sizing it by sweep.box alone allocated and cleared up to a film's worth
 // of pixels per tile and subframe when a fast fragment made the bound large (a dolly with few re-clips).
@@ -181,6 +236,9 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
     scratch.swept.clear();
     for (int y = region.y0; y < region.y1; ++y) {
         for (int x = region.x0; x < region.x1; ++x) {
+            const std::size_t pixel_begin = scratch.swept.size();
+            bool one_surface = sweep != nullptr;  // every fragment swept, all of one object
+            std::uint32_t pixel_object = std::numeric_limits<std::uint32_t>::max();
             for (const Fragment& fragment : scratch.fragments.pixel(x, y)) {
                 ++stats.fragments;
                 if (fragment.source_count > 1) ++stats.mixed;
@@ -259,13 +317,21 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     if (shift.moves()) positions = sweep->positions;
                 } else {
                     ++stats.sweep_unswept;
+                    one_surface = false;
                 }
-                stats.sweep_positions += positions;
+                for (int k = 0; k < fragment.source_count; ++k) {
+                    const std::uint32_t object = scratch.sources[fragment.sources[k].source].object;
+                    if (pixel_object == std::numeric_limits<std::uint32_t>::max()) pixel_object = object;
+                    one_surface = one_surface && object == pixel_object;
+                }
                 // Swept after the tile's last fragment: only then is the box they reach known.
                 scratch.swept.push_back({polygon, shift, positions, colour, motion, sampled ? 1.0 / inv_depth : 0.0, true});
                 for (const auto& [piece, piece_colour] : scratch.textured)
                     scratch.swept.push_back({piece, shift, positions, piece_colour, {}, 0.0, false});
             }
+            if (one_surface) mergePixel(scratch.swept, pixel_begin, scratch.staging);
+            for (std::size_t i = pixel_begin; i < scratch.swept.size(); ++i)
+                if (scratch.swept[i].coverage) stats.sweep_positions += scratch.swept[i].positions;
         }
     }
     if (sweep) accumulateSwept(*sweep, tile, scratch, out);

@@ -86,6 +86,7 @@ struct ReclipScratch {
     std::vector<SourceTriangle> sources;  // per screen triangle: its vertices on the mesh triangle
     std::vector<ShadedPiece> pieces;
     std::vector<SweptPolygon> swept;  // sweep: the tile's polygons, in fragment order
+    std::vector<SweptPolygon> staging;  // sweep: one pixel's polygons after merging
     std::vector<std::pair<ConvexPolygon, glm::dvec3>> textured;  // sweep: pieces with their colour per px^2
     std::vector<glm::dvec4> stretch;  // sweep: per screen triangle, x and y stretch at the interval's ends
     TileScratch tile;

@@ -95,6 +95,27 @@ TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
     }
 }
 
+// A pixel whose fragments are all of one object and fill an axis-aligned rectangle is swept as that
+// rectangle (the quad's diagonal cuts pixels in two, and so may the two frames' triangulations), so the
+// positions placed are positions x pixels. Quad A, flat white, moves 6.4 px right: at the re-clip
+// (t = 1/2) it covers raster [6.5, 16.9] x [5.2, 28.9], columns 6..16 and rows 5..28, 264 pixels, and 4
+// positions each. Quad B, nearer and moving down, covers [16.9, 22.3] x [6.0, 22.2] then, 7 x 17 pixels,
+// and shares column 16 with A (rows 6..22): pixels where two objects meet keep one entry per fragment,
+// so there are at least 4 x (264 + 119) positions, where merging them would give 4 x (264 + 119 - 17).
+TEST(SweepIntegration, PixelsOfOneSurfaceSweepAsOneRectangle) {
+    const glm::dvec2 v(6.4, 0.0);
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.scene.objects.push_back(movingQuad(3.3, 5.2, 13.7, 28.9, 10.0, v));
+    const RenderResult one = renderFrame(sweepJob(job, v, 1, 4), 0);
+    EXPECT_EQ(one.stats.counts.at("sweep_positions"), 4 * 264);
+    EXPECT_GT(one.stats.counts.at("reclip_fragments"), 264) << "the diagonal cuts pixels: the test means something";
+
+    job.scene.objects.push_back(movingQuad(16.9, 4.4, 22.3, 20.6, 8.0, glm::dvec2(0.0, 3.2)));
+    const RenderResult two = renderFrame(sweepJob(job, v, 1, 4), 0);
+    EXPECT_GE(two.stats.counts.at("sweep_positions"), 4 * (264 + 119));
+}
+
 // A striped quad receding from depth 5 to 6 shrinks toward the image centre by 5/6. A sweep follows each
 // fragment's centroid on the homogeneous parabola, exact under translation (SweepPath::through), and
 // stretches it by depth(t) / depth, exact for a surface facing the camera: so with fine positions one
