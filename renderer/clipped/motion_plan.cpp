@@ -177,8 +177,8 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             constexpr double kChordTolerance = 0.1;  // px
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath), so a surface that turns or shears under them (a roll) is followed to
-            // within FragmentMotion::unstretched_error over the segment, that / n per subframe; keep it at
-            // kChordTolerance. Each fragment triangle's own open-to-close map gives it (one fit over an
+            // within FragmentMotion::unstretched_error with one interval, that / n with n; keep it at
+            // kChordTolerance, as the paths. Each fragment triangle's own open-to-close map gives it (one fit over an
             // object's triangles near a tile mixed its faces, and was ill-posed where they lay in a line).
             double deviation = 0.0, unstretched = 0.0;
             for (const FragmentRef& ref : refs) {

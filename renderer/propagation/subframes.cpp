@@ -39,7 +39,10 @@ void addKeyTimes(std::vector<double>& times, double t0, double t1, const auto& k
 // J is the affine map with J (b - a) = (b' - a') and J (c - a) = (c' - a'). A sliver's J says little:
 // where motion is not affine (a camera turn is a homography), the part of the displacement that bends
 // along its length is divided by its width. Triangles thinner than about 1:10 are left out
-// (det / (|e1|^2 + |e2|^2) is 0.5 for a right isosceles one).
+// (det / (|e1|^2 + |e2|^2) is 0.5 for a right isosceles one). A fragment is placed at its interval's
+// middle and turns by half the interval's residual to either end; its vertices lie within half an edge of
+// its centre, and within half a pixel's diagonal for a piece of one pixel: hence |(J - S) e| / |e| x
+// min(|e|, sqrt 2) / 4 with one interval.
 void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close, FragmentMotion& out) {
     const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
     const double det = e1.x * e2.y - e1.y * e2.x;
@@ -50,7 +53,7 @@ void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::d
         const double length = glm::length(e);
         if (length > 0.0)
             out.unstretched_error =
-                std::max(out.unstretched_error, glm::length(residual * e) / length * std::min(length, std::sqrt(2.0)));
+                std::max(out.unstretched_error, glm::length(residual * e) / length * std::min(length, std::sqrt(2.0)) / 4.0);
     }
 }
 

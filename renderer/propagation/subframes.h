@@ -36,11 +36,12 @@ struct FragmentMotion {
     // (SweepPath::through its positions and depths at open, mid-shutter and close): a third-order error,
     // so for smooth paths it falls as the cube of the interval count; 0 for paths under translation alone.
     double parabola_deviation = 0.0;
-    // What a sweep, which moves a fragment rigidly and stretches it along the raster axes (S, the lengths
-    // of the columns of the affine map J carrying the triangle's vertices from open to close), misses of
-    // the triangle's motion over the shutter: the largest |(J - S) e| over its edges e, each shortened to
-    // at most a pixel's diagonal (a fragment is a piece of it within one pixel), in pixels. 0 for a sliver
-    // or when a vertex reaches the camera plane.
+    // What a sweep with one interval, which moves a fragment along its centre's path and stretches it
+    // along the raster axes (S, the lengths of the columns of the affine map J carrying the triangle's
+    // vertices from open to close) without turning it, misses of the triangle's motion: how far a
+    // fragment's vertex strays at the interval's ends, the largest |(J - S) e| / |e| x (half of |e|, at
+    // most half a pixel's diagonal: a fragment is a piece of the triangle within one pixel) / 2, in
+    // pixels. 0 for a sliver or when a vertex reaches the camera plane.
     double unstretched_error = 0.0;
     // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
     // between samples) as the swept box is. Depth is affine over a planar fragment, so every point of it
