@@ -323,6 +323,11 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         sweeping ? sweepPositions(scene, ctx.projection, layers, ts, te, intervals, settings.sweep_spacing,
                                   settings.max_subframes)
                  : std::vector<int>{};
+    std::vector<std::vector<glm::dmat3>> turns;  // sweep: a turning camera's turns per interval and position
+    for (int k = 0; sweeping && k < intervals; ++k) {
+        const double h = (te - ts) / intervals;
+        turns.push_back(cameraTurns(scene, ctx.projection, ts + k * h, ts + (k + 1) * h, positions[static_cast<std::size_t>(k)]));
+    }
     totals.plan_seconds += secondsSince(stage);
     stage = Clock::now();
     const DataWindow& window = ctx.window;
@@ -366,6 +371,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 interval.begin = &*begin;
                 interval.end = &*end;
                 interval.positions = positions[static_cast<std::size_t>(k)];
+                if (n == intervals && !turns[static_cast<std::size_t>(k)].empty())
+                    interval.setTurns(turns[static_cast<std::size_t>(k)], snapshot);
             }
             reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile,
                            sweeping ? &interval : nullptr, settings.audit, scratch,

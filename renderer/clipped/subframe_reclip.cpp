@@ -80,7 +80,10 @@ std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& swee
     const MeshPoint point{source.object, source.triangle, bary};
     const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
     if (a.behind || b.behind) return std::nullopt;
-    return SweepPath::through(a.raster, a.depth, at, 1.0 / sample.inv_depth, b.raster, b.depth);
+    SweepPath path = SweepPath::through(a.raster, a.depth, at, 1.0 / sample.inv_depth, b.raster, b.depth,
+                                        sweep.unturn_begin, sweep.unturn_end);
+    path.turns = sweep.turns;
+    return path;
 }
 
 // How much the surface under a screen triangle stretches along each raster axis at the interval's start
@@ -214,6 +217,26 @@ void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipS
 
 }  // namespace
 
+void SweepInterval::setTurns(std::span<const glm::dmat3> at_positions, const MotionSnapshot& at_t) {
+    turns = at_positions;
+    unturn_begin = glm::inverse(cameraTurn(*begin, at_t));
+    unturn_end = glm::inverse(cameraTurn(*end, at_t));
+}
+
+std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projection, double begin, double end,
+                                    int positions) {
+    const MotionSnapshot middle(scene, projection, 0.5 * (begin + end));
+    std::vector<glm::dmat3> turns;
+    bool turning = false;
+    for (int k = 0; k < positions; ++k) {
+        const MotionSnapshot at(scene, projection, begin + (end - begin) * (k + 0.5) / positions);
+        turning = turning || at.camera.basis() != middle.camera.basis();
+        turns.push_back(cameraTurn(at, middle));
+    }
+    if (!turning) turns.clear();
+    return turns;
+}
+
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
                     const FragmentLayers& layers, std::span<const FragmentRef> refs, const Tile& tile,
                     const SweepInterval* sweep, bool audit, ReclipScratch& scratch, TileSums& out,
@@ -305,15 +328,17 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     add(out.index(x, y), fragment.area);
                     continue;
                 }
-                const std::optional<SweepPath> path =
+                std::optional<SweepPath> path =
                     sampled ? sweepPath(scene, *sweep, scratch.sources[first], sample, c) : std::nullopt;
+                if (path) {
+                    glm::dvec4& stretch = scratch.stretch[first];
+                    if (std::isnan(stretch.x)) stretch = surfaceStretch(scene, *sweep, scratch.screen[first], scratch.sources[first]);
+                    path->setStretch(glm::dvec2(stretch.x, stretch.y), glm::dvec2(stretch.z, stretch.w));
+                }
                 int positions = 1;
                 SweepPath shift;
                 if (path && path->reach() <= 0.5 * sweep->reach) {
                     shift = *path;
-                    glm::dvec4& stretch = scratch.stretch[first];
-                    if (std::isnan(stretch.x)) stretch = surfaceStretch(scene, *sweep, scratch.screen[first], scratch.sources[first]);
-                    shift.setStretch(glm::dvec2(stretch.x, stretch.y), glm::dvec2(stretch.z, stretch.w));
                     if (shift.moves()) positions = sweep->positions;
                 } else {
                     ++stats.sweep_unswept;

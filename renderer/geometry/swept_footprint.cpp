@@ -1,9 +1,12 @@
 #include "renderer/geometry/swept_footprint.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 namespace clipblur {
 
@@ -23,27 +26,49 @@ bool axisAlignedRectangle(const ConvexPolygon& q) {
 }  // namespace swept_detail
 
 SweepPath SweepPath::through(const glm::dvec2& a, double za, const glm::dvec2& m, double zm, const glm::dvec2& b,
-                             double zb) {
-    // Homogeneous offsets from m, scaled by 1 / zm: h(s) = (raster(s) - m) w(s), w(s) = depth(s) / zm.
-    const double wa = za / zm, wb = zb / zm;
-    const glm::dvec2 ha = (a - m) * wa, hb = (b - m) * wb;
+                             double zb, const glm::dmat3& unturn_a, const glm::dmat3& unturn_b) {
+    // Homogeneous coordinates over zm, unturned: h(s) = (m w(s) + g(s), w(s)), g the offset numerator.
+    const glm::dvec3 ha = unturn_a * glm::dvec3(a * (za / zm), za / zm), hb = unturn_b * glm::dvec3(b * (zb / zm), zb / zm);
+    const glm::dvec2 ga = glm::dvec2(ha) - m * ha.z, gb = glm::dvec2(hb) - m * hb.z;
     SweepPath path;
-    path.chord = hb - ha;
-    path.bend = 0.5 * (ha + hb);
+    path.chord = gb - ga;
+    path.bend = 0.5 * (ga + gb);
     path.pivot = m;
-    path.depth_chord = wb - wa;
-    path.depth_bend = 0.5 * (wa + wb) - 1.0;
+    path.depth_chord = hb.z - ha.z;
+    path.depth_bend = 0.5 * (ha.z + hb.z) - 1.0;
+    path.depth_open = za / zm;
+    path.depth_close = zb / zm;
+    path.open_offset = a - m;
+    path.close_offset = b - m;
     return path;
 }
 
 void SweepPath::setStretch(const glm::dvec2& open, const glm::dvec2& close) {
-    // The numerator at the ends: stretch x w.
-    const glm::dvec2 na = open * depthAt(-0.5), nb = close * depthAt(0.5);
+    // The numerator at the ends: stretch x depth ratio.
+    open_stretch = open;
+    close_stretch = close;
+    const glm::dvec2 na = open * depth_open, nb = close * depth_close;
     stretch_chord = nb - na;
     stretch_bend = 0.5 * (na + nb) - 1.0;
 }
 
+namespace {
+
+// With turns: the Bezier hull of the raster parabola through the offsets at the ends and 0 at s = 0.
+std::array<glm::dvec2, 3> turnedHull(const SweepPath& path) {
+    return {path.open_offset, path.close_offset, -0.5 * (path.open_offset + path.close_offset)};
+}
+
+constexpr double kTurnedGrowth = 1.1, kTurnedMargin = 0.1;  // px
+
+}  // namespace
+
 double SweepPath::reach() const {
+    if (!turns.empty()) {
+        double farthest = 0.0;
+        for (const glm::dvec2& p : turnedHull(*this)) farthest = std::max(farthest, glm::length(p));
+        return kTurnedGrowth * farthest + kTurnedMargin;
+    }
     // Least w over [-1/2, 1/2]: at an end or at the parabola's vertex.
     double least = std::min(depthAt(-0.5), depthAt(0.5));
     if (depth_bend > 0.0) {
@@ -57,7 +82,7 @@ double SweepPath::reach() const {
 bool SweepPath::moves() const {
     const glm::dvec2 zero(0.0);
     return chord != zero || bend != zero || stretch_chord != zero || stretch_bend != zero || depth_chord != 0.0 ||
-           depth_bend != 0.0;
+           depth_bend != 0.0 || !turns.empty();
 }
 
 void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions, std::vector<PixelWeight>& out) {
@@ -72,6 +97,27 @@ Bounds2 sweptBounds(const ConvexPolygon& q, const SweepPath& path, int positions
     //     N(s) = r + s (chord + r stretch_chord) + 4 s^2 (bend + r stretch_bend),  r = bound - pivot.
     // It is extreme at the first or last position or where N' W - N W' vanishes, a quadratic (the cubic
     // terms cancel): (n2 w1 - n1 w2) s^2 + 2 (n2 - n0 w2) s + (n1 - n0 w1).
+    if (path.turnAt(0, m)) {
+        const std::array<glm::dvec2, 3> hull = turnedHull(path);
+        for (int axis = 0; axis < 2; ++axis) {
+            double offset_lo = 0.0, offset_hi = 0.0;
+            for (const glm::dvec2& p : hull) {
+                offset_lo = std::min(offset_lo, p[axis]);
+                offset_hi = std::max(offset_hi, p[axis]);
+            }
+            const double stretch_lo = std::min({1.0, path.open_stretch[axis], path.close_stretch[axis]});
+            const double stretch_hi = std::max({1.0, path.open_stretch[axis], path.close_stretch[axis]});
+            for (const double b : {box.lo[axis], box.hi[axis]}) {
+                const double r = b - path.pivot[axis];
+                const double lo = path.pivot[axis] + offset_lo + std::min(stretch_lo * r, stretch_hi * r);
+                const double hi = path.pivot[axis] + offset_hi + std::max(stretch_lo * r, stretch_hi * r);
+                const double grow = (kTurnedGrowth - 1.0) * (hi - lo) + kTurnedMargin;
+                out.lo[axis] = std::min(out.lo[axis], lo - grow);
+                out.hi[axis] = std::max(out.hi[axis], hi + grow);
+            }
+        }
+        return out;
+    }
     const double first = 0.5 / m - 0.5, last = -first;
     const double w1 = path.depth_chord, w2 = 4.0 * path.depth_bend;
     for (int axis = 0; axis < 2; ++axis) {

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "renderer/geometry/convex_polygon.h"
 
@@ -24,11 +27,16 @@ struct PixelWeight {
 //     offset(s) = (s chord + 4 s^2 bend) / w(s),   w(s) = 1 + s depth_chord + 4 s^2 depth_bend,
 // w being the point's depth relative to its depth at s = 0. Homogeneous coordinates are linear in the
 // point's camera-space position, so under camera and object translation (a pan, a dolly, objects sliding)
-// the parabola is exact (a straight line, bend 0) and so is the path; only rotation leaves a third-order
-// error. With depth_chord = depth_bend = 0 it is the raster parabola through the three positions.
+// the parabola is exact (a straight line, bend 0) and so is the path. With depth_chord = depth_bend = 0 it
+// is the raster parabola through the three positions.
+// A turning camera turns every point's homogeneous coordinates by one homography per time (cameraTurn):
+// with `turns` (one per swept position, shared by the interval's fragments) the parabola is that of the
+// coordinates as the camera would see them without turning, turned back exactly at each position, so
+// only object rotation leaves a third-order error.
 // Optionally a stretch about the pivot: per raster axis the factor (1 + s stretch_chord + 4 s^2
-// stretch_bend) / w(s), through 1 at s = 0 and the surface's stretch at the ends, so a fragment on a
-// surface the camera dollies away from shrinks with it (exactly so for a surface facing the camera).
+// stretch_bend) / (depth ratio at s), through 1 at s = 0 and the surface's stretch at the ends, so a
+// fragment on a surface the camera dollies away from shrinks with it (exactly so for a surface facing
+// the camera).
 struct SweepPath {
     glm::dvec2 chord{0.0};
     glm::dvec2 bend{0.0};
@@ -37,26 +45,51 @@ struct SweepPath {
     glm::dvec2 stretch_bend{0.0};
     double depth_chord = 0.0;
     double depth_bend = 0.0;
+    double depth_open = 1.0, depth_close = 1.0;  // the point's depth at s = -1/2 and 1/2 over its depth at 0
+    std::span<const glm::dmat3> turns;           // empty, or the camera's turn at each swept position
+    // The exact offsets at s = -1/2 and 1/2 and the stretch there (through, setStretch): with turns, reach
+    // and sweptBounds bound the path by the hull of the raster parabola through them instead.
+    glm::dvec2 open_offset{0.0}, close_offset{0.0};
+    glm::dvec2 open_stretch{1.0}, close_stretch{1.0};
 
-    // The path of a point at raster positions a, m, b and depths za, zm, zb (all > 0) at s = -1/2, 0, 1/2.
+    // The path of a point at raster positions a, m, b and depths za, zm, zb (all > 0) at s = -1/2, 0, 1/2;
+    // with a turning camera, unturn_a and unturn_b take homogeneous coordinates at the ends back to the
+    // camera's orientation at s = 0 (the inverses of cameraTurn there).
     static SweepPath through(const glm::dvec2& a, double za, const glm::dvec2& m, double zm, const glm::dvec2& b,
-                             double zb);
+                             double zb, const glm::dmat3& unturn_a = glm::dmat3(1.0),
+                             const glm::dmat3& unturn_b = glm::dmat3(1.0));
     double depthAt(double s) const { return 1.0 + s * depth_chord + (4.0 * s * s) * depth_bend; }
+    // Offset and stretch without a turn.
     glm::dvec2 at(double s) const { return (s * chord + (4.0 * s * s) * bend) / depthAt(s); }
     glm::dvec2 stretchAt(double s) const {
         return (glm::dvec2(1.0) + s * stretch_chord + (4.0 * s * s) * stretch_bend) / depthAt(s);
     }
-    // Offset and stretch at s with one division (what each swept position needs).
-    void place(double s, glm::dvec2& offset, glm::dvec2& stretch) const {
-        const double q = 4.0 * s * s, inv = 1.0 / (1.0 + s * depth_chord + q * depth_bend);
-        offset = (s * chord + q * bend) * inv;
-        stretch = (glm::dvec2(1.0) + s * stretch_chord + q * stretch_bend) * inv;
+    // Offset and stretch at s, the camera turned by `turn` there (null: no turn), with one division.
+    void place(double s, const glm::dmat3* turn, glm::dvec2& offset, glm::dvec2& stretch) const {
+        const double q = 4.0 * s * s, w = 1.0 + s * depth_chord + q * depth_bend;
+        const glm::dvec2 g = s * chord + q * bend, n = glm::dvec2(1.0) + s * stretch_chord + q * stretch_bend;
+        if (!turn) {
+            const double inv = 1.0 / w;
+            offset = g * inv;
+            stretch = n * inv;
+            return;
+        }
+        const glm::dvec3 h = *turn * glm::dvec3(pivot * w + g, w);
+        const double inv = 1.0 / h.z;
+        offset = glm::dvec2(h) * inv - pivot;
+        stretch = n * inv;
+    }
+    // The turn at position k of `positions`, or null.
+    const glm::dmat3* turnAt(int k, int positions) const {
+        return turns.size() == static_cast<std::size_t>(positions) ? &turns[static_cast<std::size_t>(k)] : nullptr;
     }
     // Sets the stretch so that it is `open` at s = -1/2 and `close` at s = 1/2.
     void setStretch(const glm::dvec2& open, const glm::dvec2& close);
     bool moves() const;
-    // Bounds the pivot's offset over the interval: (|chord| / 2 + |bend|) / (least w); infinity when w
-    // reaches 0 (the point would cross the camera plane).
+    // Bounds the pivot's offset over the interval: (|chord| / 2 + |bend|) / (least w), infinity when w
+    // reaches 0 (the point would cross the camera plane). With turns, the farthest of the open and close
+    // offsets and the control point of the raster parabola through them (its Bezier hull holds it),
+    // plus 10% and 0.1 px for how far the turned path can leave that parabola within a re-clip interval.
     double reach() const;
 };
 
@@ -71,7 +104,8 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
 // The same, appended to `out`.
 void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions, std::vector<PixelWeight>& out);
 
-// Raster bounds of every position's moved polygon (for sizing the pixels a footprint can reach).
+// Raster bounds of every position's moved polygon (for sizing the pixels a footprint can reach): tight
+// without turns; with them, from the hull reach() uses and the stretch's range, with the same margins.
 Bounds2 sweptBounds(const ConvexPolygon& q, const SweepPath& path, int positions);
 
 namespace swept_detail {
@@ -183,7 +217,7 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
         const Bounds2 box = q.bounds();
         for (int k = 0; k < m; ++k) {
             glm::dvec2 offset, stretch;
-            path.place((k + 0.5) / m - 0.5, offset, stretch);
+            path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);
             const glm::dvec2 at = path.pivot + offset;
             const glm::dvec2 lo = at + stretch * (box.lo - path.pivot), hi = at + stretch * (box.hi - path.pivot);
             cellOverlaps(lo.y, hi.y, [&](int y, double h) {
@@ -196,7 +230,7 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
     moved.n = q.n;
     for (int k = 0; k < m; ++k) {
         glm::dvec2 offset, stretch;
-        path.place((k + 0.5) / m - 0.5, offset, stretch);
+        path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);
         const glm::dvec2 at = path.pivot + offset;
         for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
         polygonCells(moved, scale, add);

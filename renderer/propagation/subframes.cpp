@@ -90,6 +90,17 @@ ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& pro
     add(breakpoints_.back(), 0.0);
     for (std::size_t i = 1; i < nodes_.size(); ++i)
         max_gap_ = std::max(max_gap_, nodes_[i].snapshot.time - nodes_[i - 1].snapshot.time);
+    bool turning = false;
+    for (const Node& node : nodes_) {
+        turning = turning || node.snapshot.camera.basis() != middle_.camera.basis();
+        turns_.push_back(cameraTurn(node.snapshot, middle_));
+    }
+    if (turning) {
+        unturn_open_ = glm::inverse(turns_.front());
+        unturn_close_ = glm::inverse(turns_.back());
+    } else {
+        turns_.clear();
+    }
 }
 
 double ShutterPathSampler::pathLength(const MeshPoint& point) const {
@@ -141,14 +152,19 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             const ProjectedPoint mid = project(middle_, *scene_, vertex);
             if (!mid.behind) {
                 // What a one-interval sweep follows (SweepPath: the homogeneous parabola through the
-                // positions and depths at open, mid-shutter and close), at u = s + 1/2.
+                // positions and depths at open, mid-shutter and close, with the camera's turn taken out
+                // and put back), at u = s + 1/2.
                 const SweepPath path = SweepPath::through(a, positions.front().z, mid.raster, mid.depth, b,
-                                                          positions.back().z);
-                if (!std::isfinite(path.reach())) out.parabola_deviation = std::numeric_limits<double>::infinity();
+                                                          positions.back().z, unturn_open_, unturn_close_);
+                if (turns_.empty() && !std::isfinite(path.reach()))
+                    out.parabola_deviation = std::numeric_limits<double>::infinity();
                 for (std::size_t i = 0; i < nodes_.size(); ++i) {
                     const double s = (nodes_[i].snapshot.time - t0) / duration_ - 0.5;
-                    out.parabola_deviation = std::max(
-                        out.parabola_deviation, glm::length(glm::dvec2(positions[i]) - (mid.raster + path.at(s))));
+                    glm::dvec2 offset, stretch;
+                    path.place(s, turns_.empty() ? nullptr : &turns_[i], offset, stretch);
+                    const double miss = glm::length(glm::dvec2(positions[i]) - (mid.raster + offset));
+                    out.parabola_deviation = std::max(out.parabola_deviation,
+                                                      std::isfinite(miss) ? miss : std::numeric_limits<double>::infinity());
                 }
             }
         }

@@ -82,6 +82,10 @@ private:
     std::vector<double> breakpoints_;
     std::vector<Node> nodes_;  // in time order
     MotionSnapshot middle_;    // at (t0 + t1) / 2, for the parabola
+    // A turning camera: per node, its turn from middle_ (cameraTurn); and the inverses at the first and
+    // last node. Empty when it does not turn.
+    std::vector<glm::dmat3> turns_;
+    glm::dmat3 unturn_open_{1.0}, unturn_close_{1.0};
     double max_gap_ = 0.0;
     double duration_ = 0.0;
 };

@@ -120,6 +120,14 @@ ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const
     return projectRelative(snapshot, world, world - snapshot.camera.position);
 }
 
+glm::dmat3 cameraTurn(const MotionSnapshot& to, const MotionSnapshot& from) {
+    // Homogeneous raster = K (e1 . d, e2 . d, e3 . d): raster x = W/2 + k (e2 . d) / z, y = H/2 - k (e1 . d) / z.
+    const Projection& p = from.projection;
+    const double k = p.pixelsPerUnit();
+    const glm::dmat3 K(glm::dvec3(0.0, -k, 0.0), glm::dvec3(k, 0.0, 0.0), glm::dvec3(0.5 * p.width, 0.5 * p.height, 1.0));
+    return K * glm::transpose(to.camera.basis()) * from.camera.basis() * glm::inverse(K);
+}
+
 ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];

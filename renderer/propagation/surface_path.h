@@ -73,6 +73,12 @@ struct ProjectedMotion {
 // Exact position: the propagated 3D surface point projected by the camera at the snapshot's time.
 ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point);
 
+// The camera's turn between two snapshots as a map of homogeneous raster coordinates (raster x depth,
+// depth): a point at a given position relative to the camera centre, seen with `from`'s orientation at h,
+// is seen with `to`'s at cameraTurn(to, from) h. One homography for every point; the identity when the
+// orientation is the same.
+glm::dmat3 cameraTurn(const MotionSnapshot& to, const MotionSnapshot& from);
+
 // Position plus analytic velocity. With d = r - rc, e_i' = W x e_i and g = d' + d x W, the image-plane
 // coordinates p_i = e_i.d / e3.d have p_i' = (e_i.g - p_i e3.g) / (e3.d).
 ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point);

@@ -204,6 +204,33 @@ TEST(SweepIntegration, RollErrorFallsWithReclips) {
     }
 }
 
+// A camera backing away (depth 5 -> 10) while it pans by 0.1 rad: with the camera's turn taken out of
+// the paths and put back at each position (SweepPath::turns), every path is followed exactly, so auto
+// asks for one re-clip. What is left against 96 point subframes (positions 0.02 px apart) is that
+// fragments shear with the pan's homography but are not sheared, which more re-clips shrink: RMS 0.00094,
+// 0.00040, 0.000078 at 1, 2, 8.
+TEST(SweepIntegration, TurningDollyNeedsOneReclip) {
+    RenderJob job = stripedJob();
+    Object quad = rasterQuad(-8.0, -8.0, 40.0, 40.0, 5.0);
+    quad.material = 1;
+    job.scene.objects.push_back(quad);
+    job.scene.camera.keys.push_back(
+        CameraKey{1.0, glm::dvec3(0, 0, -5), glm::dvec3(std::sin(0.1), 0, std::cos(0.1)), glm::dvec3(0, 1, 0)});
+    job.render.subframes = 96;
+    const RenderResult point = renderFrame(job, 0);
+    job.render.time_integration = TimeIntegration::Sweep;
+    job.render.sweep_spacing = 0.02;
+    job.render.subframes = 0;
+    EXPECT_EQ(renderFrame(job, 0).stats.counts.at("subframes_max_per_tile"), 1);
+    double previous = 0.0;
+    for (const int intervals : {1, 2, 8}) {
+        job.render.subframes = intervals;
+        const double error = rmsDifference(renderFrame(job, 0), point);
+        if (intervals > 1) EXPECT_LT(error, 0.6 * previous) << intervals;
+        previous = error;
+    }
+}
+
 // A tilt of 0.05 rad turns the image by a homography: every fragment shears by at most x/f x 0.05 <= 0.05
 // (x/f <= 1 with a 90 degree field of view), half the 0.1 the gradient rule allows per re-clip, and a
 // point's path is nearly a parabola (what the chord rule used before did not credit); so one re-clip.

@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include "renderer/geometry/swept_footprint.h"
@@ -204,6 +205,61 @@ TEST(SweepPath, BoundsHoldEveryPositionAndAreTight) {
         }
     }
     EXPECT_GT(checked, 200);
+}
+
+// With a turning camera, SweepPath::through the unturned ends (the turn's inverse applied there) and the
+// turn applied at each position follows a point exactly under camera translation and rotation, however
+// far the camera turns. Projected and turned here by hand: camera coordinates R(s)^T (X - c(s)), R(s) a
+// turn by 0.4 s rad about a random axis, c(s) linear; raster = (cx + f x / z, cy - f y / z), so the turn
+// from s = 0 to s is K R(s)^T R(0) K^-1 with K = [f 0 cx; 0 -f cy; 0 0 1]. reach() and sweptBounds hold
+// every position of a pixel-sized polygon (with their margins).
+TEST(SweepPath, TurnsFollowATurningMovingCameraExactly) {
+    std::mt19937 rng(20261125);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const double f = 600.0;
+    const glm::dvec2 centre(640.0, 360.0);
+    glm::dmat3 K(1.0);
+    K[0][0] = f;
+    K[1][1] = -f;
+    K[2] = glm::dvec3(centre, 1.0);
+    for (int trial = 0; trial < 200; ++trial) {
+        const glm::dvec3 axis = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+        const glm::dvec3 c0(u(rng), u(rng), u(rng)), v(2.0 * u(rng), 2.0 * u(rng), 2.0 * u(rng));
+        const glm::dvec3 x(4.0 * u(rng), 3.0 * u(rng), 12.0 + 2.0 * u(rng));
+        const auto rotation = [&](double s) { return glm::mat3_cast(glm::angleAxis(0.4 * s, axis)); };
+        const auto camera = [&](double s) { return glm::transpose(rotation(s)) * (x - (c0 + s * v)); };
+        const auto raster = [&](double s) {
+            const glm::dvec3 p = camera(s);
+            return centre + f * glm::dvec2(p.x / p.z, -p.y / p.z);
+        };
+        const auto turn = [&](double s) { return K * glm::transpose(rotation(s)) * rotation(0.0) * glm::inverse(K); };
+        SweepPath path = SweepPath::through(raster(-0.5), camera(-0.5).z, raster(0.0), camera(0.0).z, raster(0.5),
+                                            camera(0.5).z, glm::inverse(turn(-0.5)), glm::inverse(turn(0.5)));
+        for (int i = 0; i <= 20; ++i) {
+            const double s = i / 20.0 - 0.5;
+            const glm::dmat3 t = turn(s);
+            glm::dvec2 offset, stretch;
+            path.place(s, &t, offset, stretch);
+            // Rasters ~1000 px: a few ulps of them.
+            EXPECT_NEAR(glm::length(path.pivot + offset - raster(s)), 0.0, 1e-9) << trial << " s " << s;
+        }
+        const int m = 7;
+        std::vector<glm::dmat3> turns;
+        for (int k = 0; k < m; ++k) turns.push_back(turn((k + 0.5) / m - 0.5));
+        path.turns = turns;
+        path.setStretch(glm::dvec2(1.0 + 0.1 * u(rng), 1.0 + 0.1 * u(rng)), glm::dvec2(1.0 + 0.1 * u(rng), 1.0 + 0.1 * u(rng)));
+        ConvexPolygon q = randomFragment(rng, glm::floor(path.pivot));
+        const Bounds2 b = sweptBounds(q, path, m);
+        for (int k = 0; k < m; ++k) {
+            glm::dvec2 offset, stretch;
+            path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);
+            EXPECT_LE(glm::length(offset), path.reach()) << trial;
+            for (int i = 0; i < q.n; ++i) {
+                const glm::dvec2 p = path.pivot + offset + stretch * (q.v[i] - path.pivot);
+                EXPECT_TRUE(p.x >= b.lo.x && p.y >= b.lo.y && p.x <= b.hi.x && p.y <= b.hi.y) << trial;
+            }
+        }
+    }
 }
 
 }  // namespace clipblur

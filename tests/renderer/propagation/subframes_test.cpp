@@ -206,6 +206,33 @@ TEST(Subframes, SweepPathDeviationOfRecedingAndTurningPoints) {
         EXPECT_LE(fm.parabola_deviation, dense + 1e-9);
         EXPECT_GE(fm.parabola_deviation, 0.98 * dense);
     }
+    {
+        // A camera backing away while it pans by 0.3 rad: the homogeneous parabola through the point's
+        // positions misses its path (by hand: raster x = W/2 + k (e2 . d) / z with the camera turned by
+        // 0.3 t about y, e2 = -(cos, 0, -sin)), but with the camera's turn taken out and put back the
+        // sweep's path is exact.
+        Scene scene = testing::stillCameraScene();
+        const Projection proj = projectionOf(scene);
+        scene.objects.push_back(testing::triangleObject(a, {1, -1, 5}, {0, 1, 5}));
+        scene.camera.keys.push_back(
+            CameraKey{1.0, glm::dvec3(0, 0, -5), glm::dvec3(std::sin(0.3), 0, std::cos(0.3)), glm::dvec3(0, 1, 0)});
+        const double k = proj.pixelsPerUnit();
+        const auto homogeneous = [&](double t) {
+            const glm::dvec3 d = a - glm::dvec3(0, 0, -5.0 * t);
+            const glm::dvec3 e1(0, 1, 0), e3(std::sin(0.3 * t), 0, std::cos(0.3 * t)), e2 = glm::cross(e3, e1);
+            const double z = glm::dot(e3, d);
+            return glm::dvec3(0.5 * scene.film.width * z + k * glm::dot(e2, d), 0.5 * scene.film.height * z - k * glm::dot(e1, d), z);
+        };
+        double unturned = 0.0;
+        for (int i = 0; i <= 2000; ++i) {
+            const double u = i / 2000.0;
+            const glm::dvec3 h = homogeneous(u), q = lagrange(u, homogeneous(0.0), homogeneous(0.5), homogeneous(1.0));
+            unturned = std::max(unturned, glm::length(glm::dvec2(h) / h.z - glm::dvec2(q) / q.z));
+        }
+        EXPECT_GT(unturned, 0.1);
+        const FragmentMotion fm = ShutterPathSampler(scene, proj, 0.0, 1.0, 8).measure(std::span(&v, 1));
+        EXPECT_LT(fm.parabola_deviation, 1e-9);
+    }
     Scene slide = testing::stillCameraScene();
     const Projection proj = projectionOf(slide);
     slide.objects.push_back(slidingTriangle(proj, 10.0, 37.0));
