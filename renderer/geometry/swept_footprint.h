@@ -96,7 +96,8 @@ struct SweepPath {
 // The pixel coverage of a convex polygon q moving along `path`, averaged over `positions` equally spaced
 // times, the midpoints s = (m + 1/2) / positions - 1/2, m = 0 .. positions-1: calls add(x, y, weight) per
 // (position, pixel) with the area of that position's piece in the pixel divided by `positions`; the
-// weights sum to area(q). Axis-aligned rectangles (most fragments inside a surface are whole or partial
+// weights sum to area(q) times the share of positions where the stretch is positive along both axes (a
+// surface turning edge-on and away is not there at the others). Axis-aligned rectangles (most fragments inside a surface are whole or partial
 // pixels) take a separable fast path. A template so that a caller summing into pixels does so directly.
 template <class Add>
 void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add);
@@ -218,6 +219,7 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
         for (int k = 0; k < m; ++k) {
             glm::dvec2 offset, stretch;
             path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);
+            if (!(stretch.x > 0.0 && stretch.y > 0.0)) continue;  // edge-on or facing away
             const glm::dvec2 at = path.pivot + offset;
             const glm::dvec2 lo = at + stretch * (box.lo - path.pivot), hi = at + stretch * (box.hi - path.pivot);
             cellOverlaps(lo.y, hi.y, [&](int y, double h) {
@@ -231,6 +233,7 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
     for (int k = 0; k < m; ++k) {
         glm::dvec2 offset, stretch;
         path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);
+        if (!(stretch.x > 0.0 && stretch.y > 0.0)) continue;
         const glm::dvec2 at = path.pivot + offset;
         for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
         polygonCells(moved, scale, add);

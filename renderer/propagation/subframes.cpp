@@ -48,7 +48,10 @@ void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::d
     const double det = e1.x * e2.y - e1.y * e2.x;
     if (!(std::abs(det) > 0.05 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return;
     const glm::dmat2 j = glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
-    const glm::dmat2 residual = j - glm::dmat2(glm::length(j[0]), 0.0, 0.0, glm::length(j[1]));
+    // S as the sweep stretches: signed, negative along an axis the surface turns away in.
+    const double sx = j[0][0] < 0.0 ? -glm::length(j[0]) : glm::length(j[0]);
+    const double sy = j[1][1] < 0.0 ? -glm::length(j[1]) : glm::length(j[1]);
+    const glm::dmat2 residual = j - glm::dmat2(sx, 0.0, 0.0, sy);
     for (const glm::dvec2& e : {e1, e2, open[2] - open[1]}) {
         const double length = glm::length(e);
         if (length > 0.0)

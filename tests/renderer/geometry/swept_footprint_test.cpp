@@ -262,4 +262,29 @@ TEST(SweepPath, TurnsFollowATurningMovingCameraExactly) {
     }
 }
 
+// A surface turning away: the x stretch runs from 1 at s = -1/2 through 1 at 0 to -1 at 1/2, numerator
+// 1 - 2 s - 4 s^2, which is 0 at s = (sqrt 5 - 1) / 4 = 0.309. Positions after that are left out, so
+// the weights sum to the mean over positions of the square's stretched area, that numerator where it is
+// positive and 0 after.
+TEST(SweptFootprint, PositionsWhereTheSurfaceFacesAwayAreLeftOut) {
+    ConvexPolygon square;
+    for (glm::dvec2 v : {glm::dvec2(3, 5), glm::dvec2(4, 5), glm::dvec2(4, 6), glm::dvec2(3, 6)}) square.push(v);
+    square.close();
+    SweepPath path;
+    path.chord = glm::dvec2(4.0, 0.0);
+    path.pivot = glm::dvec2(3.5, 5.5);
+    path.setStretch(glm::dvec2(1.0), glm::dvec2(-1.0, 1.0));
+    const double root = (std::sqrt(5.0) - 1.0) / 4.0;
+    for (int m : {1, 4, 7, 16}) {
+        double expected = 0.0;
+        for (int k = 0; k < m; ++k) {
+            const double s = (k + 0.5) / m - 0.5;
+            if (s < root) expected += (1.0 - 2.0 * s - 4.0 * s * s) / m;
+        }
+        double total = 0.0;
+        for (const auto& [pixel, weight] : collect(square, path, m)) total += weight;
+        EXPECT_NEAR(total, expected, 1e-12) << m;
+    }
+}
+
 }  // namespace clipblur
