@@ -66,6 +66,7 @@ RATIO_GOAL = 5.0
 THREAD_GOAL = 1.8
 # The clipped variants the ladders run: the paper's point subframes (rung = subframes) and sweep
 # integration (rung = re-clips, with positions benchlib.SWEEP_SPACING_1 / rung pixels apart).
+SWEEP_SPACING_MIN = 0.01  # px, render.sweep_spacing's lower bound (docs/config.md)
 METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "sweep": benchlib.sweep_overrides,
            "sweep_spacing": benchlib.sweep_spacing_overrides}
 # Both seeds differ from benchlib.REFERENCE_SEED and from each other: independent sample streams.
@@ -174,6 +175,9 @@ def measure_scene(clipblur, scene, args, out, log=print):
             if rung != "auto" and reaching is not None:
                 continue
             o = dict(base, **overrides(rung))
+            # The sweep ladders stop where the spacing would fall below what a job may ask for.
+            if rung != "auto" and float(o.get("render.sweep_spacing", SWEEP_SPACING_MIN)) < SWEEP_SPACING_MIN:
+                continue
             image = folder / f"{method}_{rung}.exr"
             stats = benchlib.render(clipblur, config, o, image, args.threads)
             e, se, noise = pair.clipped_error(image)
