@@ -323,10 +323,10 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         sweeping ? sweepPositions(scene, ctx.projection, layers, ts, te, intervals, settings.sweep_spacing,
                                   settings.max_subframes)
                  : std::vector<int>{};
-    std::vector<std::vector<glm::dmat3>> turns;  // sweep: a turning camera's turns per interval and position
+    std::vector<IntervalTurns> turns;  // sweep: a turning camera's turns per interval
     for (int k = 0; sweeping && k < intervals; ++k) {
         const double h = (te - ts) / intervals;
-        turns.push_back(cameraTurns(scene, ctx.projection, ts + k * h, ts + (k + 1) * h, positions[static_cast<std::size_t>(k)]));
+        turns.push_back(intervalTurns(scene, ctx.projection, ts + k * h, ts + (k + 1) * h, positions[static_cast<std::size_t>(k)]));
     }
     totals.plan_seconds += secondsSince(stage);
     stage = Clock::now();
@@ -371,8 +371,12 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 interval.begin = &*begin;
                 interval.end = &*end;
                 interval.positions = positions[static_cast<std::size_t>(k)];
-                if (n == intervals && !turns[static_cast<std::size_t>(k)].empty())
-                    interval.setTurns(turns[static_cast<std::size_t>(k)], snapshot);
+                const IntervalTurns& turn = turns[static_cast<std::size_t>(k)];
+                if (n == intervals && !turn.at_positions.empty()) {
+                    interval.turns = turn.at_positions;
+                    interval.unturn_begin = turn.unturn_begin;
+                    interval.unturn_end = turn.unturn_end;
+                }
             }
             reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile,
                            sweeping ? &interval : nullptr, settings.audit, scratch,

@@ -86,12 +86,6 @@ std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& swee
     return path;
 }
 
-// The stretch along raster axis `axis` of an affine map: the length of the axis' image, negative where
-// the image points backwards (a face turning edge-on and away mirrors along the axis it narrows in).
-double signedStretch(const glm::dmat2& map, int axis) {
-    return map[axis][axis] < 0.0 ? -glm::length(map[axis]) : glm::length(map[axis]);
-}
-
 // How much the surface under a screen triangle stretches along each raster axis at the interval's start
 // and end: the lengths of the images of the unit x and y vectors under the affine map that carries the
 // triangle's vertices from t to there, negative along an axis the surface turns away in (the sweep then
@@ -233,24 +227,19 @@ void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipS
 
 }  // namespace
 
-void SweepInterval::setTurns(std::span<const glm::dmat3> at_positions, const MotionSnapshot& at_t) {
-    turns = at_positions;
-    unturn_begin = glm::inverse(cameraTurn(*begin, at_t));
-    unturn_end = glm::inverse(cameraTurn(*end, at_t));
-}
-
-std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projection, double begin, double end,
-                                    int positions) {
-    const MotionSnapshot middle(scene, projection, 0.5 * (begin + end));
-    std::vector<glm::dmat3> turns;
-    bool turning = false;
-    for (int k = 0; k < positions; ++k) {
-        const MotionSnapshot at(scene, projection, begin + (end - begin) * (k + 0.5) / positions);
-        turning = turning || at.camera.basis() != middle.camera.basis();
-        turns.push_back(cameraTurn(at, middle));
+IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, double begin, double end, int positions) {
+    const double middle = 0.5 * (begin + end);
+    std::vector<double> times;
+    for (int k = 0; k < positions; ++k) times.push_back(begin + (end - begin) * (k + 0.5) / positions);
+    IntervalTurns out;
+    out.at_positions = cameraTurns(scene, projection, middle, times);
+    if (out.at_positions.empty()) return out;  // the positions see no turn (one position: the middle)
+    const std::vector<glm::dmat3> ends = cameraTurns(scene, projection, middle, std::vector<double>{begin, end});
+    if (!ends.empty()) {
+        out.unturn_begin = glm::inverse(ends.front());
+        out.unturn_end = glm::inverse(ends.back());
     }
-    if (!turning) turns.clear();
-    return turns;
+    return out;
 }
 
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,

@@ -68,18 +68,20 @@ struct SweepInterval {
     Tile resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
     Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
     // A turning camera: its turn from t at each position (SweepPath::turns), and back to t from begin and
-    // end; empty and identities when it does not turn.
+    // end; empty and identities when it does not turn (IntervalTurns).
     std::span<const glm::dmat3> turns;
     glm::dmat3 unturn_begin{1.0}, unturn_end{1.0};
-
-    // Sets the turns (cameraTurns for this interval; begin and end set, t the interval's middle).
-    void setTurns(std::span<const glm::dmat3> at_positions, const MotionSnapshot& at_t);
 };
 
-// The camera's turns from the middle of [begin, end] to each of `positions` equally spaced times in it (the
-// midpoints, as the sweep places fragments), or none when its orientation is the same at all of them.
-std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projection, double begin, double end,
-                                    int positions);
+// A turning camera over a sweep interval [begin, end]: its turn from the middle to each of `positions`
+// equally spaced times (the midpoints, as the sweep places fragments) and the inverse turns at begin and
+// end; no turns when its orientation is the same at all positions. The same for every tile of the interval.
+struct IntervalTurns {
+    std::vector<glm::dmat3> at_positions;
+    glm::dmat3 unturn_begin{1.0}, unturn_end{1.0};
+};
+IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, double begin, double end, int positions);
+
 // Sweep: one polygon to sweep and what it adds per px^2 of its footprint. Texture pieces add only their
 // colour difference (coverage false); fragments add colour, coverage, motion and depth.
 struct SweptPolygon {

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/mat2x2.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -59,11 +61,6 @@ struct SweepPath {
                              double zb, const glm::dmat3& unturn_a = glm::dmat3(1.0),
                              const glm::dmat3& unturn_b = glm::dmat3(1.0));
     double depthAt(double s) const { return 1.0 + s * depth_chord + (4.0 * s * s) * depth_bend; }
-    // Offset and stretch without a turn.
-    glm::dvec2 at(double s) const { return (s * chord + (4.0 * s * s) * bend) / depthAt(s); }
-    glm::dvec2 stretchAt(double s) const {
-        return (glm::dvec2(1.0) + s * stretch_chord + (4.0 * s * s) * stretch_bend) / depthAt(s);
-    }
     // Offset and stretch at s, the camera turned by `turn` there (null: no turn), with one division.
     void place(double s, const glm::dmat3* turn, glm::dvec2& offset, glm::dvec2& stretch) const {
         const double q = 4.0 * s * s, w = 1.0 + s * depth_chord + q * depth_bend;
@@ -92,6 +89,13 @@ struct SweepPath {
     // plus 10% and 0.1 px for how far the turned path can leave that parabola within a re-clip interval.
     double reach() const;
 };
+
+// The stretch a sweep gives a surface along raster axis `axis`, from the affine map `map` that carries it
+// between two times: the length of the axis' image, negative where that image points backwards (a face
+// turning edge-on and away mirrors along the axis it narrows in).
+inline double signedStretch(const glm::dmat2& map, int axis) {
+    return map[axis][axis] < 0.0 ? -glm::length(map[axis]) : glm::length(map[axis]);
+}
 
 // The pixel coverage of a convex polygon q moving along `path`, averaged over `positions` equally spaced
 // times, the midpoints s = (m + 1/2) / positions - 1/2, m = 0 .. positions-1: calls add(x, y, weight) per

@@ -48,10 +48,8 @@ void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::d
     const double det = e1.x * e2.y - e1.y * e2.x;
     if (!(std::abs(det) > 0.05 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return;
     const glm::dmat2 j = glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
-    // S as the sweep stretches: signed, negative along an axis the surface turns away in.
-    const double sx = j[0][0] < 0.0 ? -glm::length(j[0]) : glm::length(j[0]);
-    const double sy = j[1][1] < 0.0 ? -glm::length(j[1]) : glm::length(j[1]);
-    const glm::dmat2 residual = j - glm::dmat2(sx, 0.0, 0.0, sy);
+    // S as the sweep stretches (signedStretch).
+    const glm::dmat2 residual = j - glm::dmat2(signedStretch(j, 0), 0.0, 0.0, signedStretch(j, 1));
     for (const glm::dvec2& e : {e1, e2, open[2] - open[1]}) {
         const double length = glm::length(e);
         if (length > 0.0)
@@ -93,16 +91,12 @@ ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& pro
     add(breakpoints_.back(), 0.0);
     for (std::size_t i = 1; i < nodes_.size(); ++i)
         max_gap_ = std::max(max_gap_, nodes_[i].snapshot.time - nodes_[i - 1].snapshot.time);
-    bool turning = false;
-    for (const Node& node : nodes_) {
-        turning = turning || node.snapshot.camera.basis() != middle_.camera.basis();
-        turns_.push_back(cameraTurn(node.snapshot, middle_));
-    }
-    if (turning) {
+    std::vector<double> times;
+    for (const Node& node : nodes_) times.push_back(node.snapshot.time);
+    turns_ = cameraTurns(scene, projection, middle_.time, times);
+    if (!turns_.empty()) {
         unturn_open_ = glm::inverse(turns_.front());
         unturn_close_ = glm::inverse(turns_.back());
-    } else {
-        turns_.clear();
     }
 }
 

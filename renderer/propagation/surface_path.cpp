@@ -128,6 +128,20 @@ glm::dmat3 cameraTurn(const MotionSnapshot& to, const MotionSnapshot& from) {
     return K * glm::transpose(to.camera.basis()) * from.camera.basis() * glm::inverse(K);
 }
 
+std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projection, double middle,
+                                    std::span<const double> times) {
+    const MotionSnapshot from(scene, projection, middle);
+    std::vector<glm::dmat3> turns;
+    bool turning = false;
+    for (const double t : times) {
+        const MotionSnapshot to(scene, projection, t);
+        turning = turning || to.camera.basis() != from.camera.basis();
+        turns.push_back(cameraTurn(to, from));
+    }
+    if (!turning) turns.clear();
+    return turns;
+}
+
 ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -78,6 +79,11 @@ ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const
 // is seen with `to`'s at cameraTurn(to, from) h. One homography for every point; the identity when the
 // orientation is the same.
 glm::dmat3 cameraTurn(const MotionSnapshot& to, const MotionSnapshot& from);
+
+// The camera's turns from time `middle` to each of `times` (cameraTurn), or none when its orientation is
+// the same at all of them.
+std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projection, double middle,
+                                    std::span<const double> times);
 
 // Position plus analytic velocity. With d = r - rc, e_i' = W x e_i and g = d' + d x W, the image-plane
 // coordinates p_i = e_i.d / e3.d have p_i' = (e_i.g - p_i e3.g) / (e3.d).

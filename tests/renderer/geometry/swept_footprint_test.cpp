@@ -49,6 +49,18 @@ ConvexPolygon randomFragment(std::mt19937& rng, glm::dvec2 at) {
 
 std::vector<glm::dvec2> vertices(const ConvexPolygon& p) { return {p.v.begin(), p.v.begin() + p.n}; }
 
+// A path's offset and stretch at s without a turn.
+glm::dvec2 offsetAt(const SweepPath& path, double s) {
+    glm::dvec2 offset, stretch;
+    path.place(s, nullptr, offset, stretch);
+    return offset;
+}
+glm::dvec2 stretchAt(const SweepPath& path, double s) {
+    glm::dvec2 offset, stretch;
+    path.place(s, nullptr, offset, stretch);
+    return stretch;
+}
+
 }  // namespace
 
 // A unit square moving two pixels right is, averaged over the interval, a tent: 1/2 stays in its pixel and
@@ -143,11 +155,11 @@ TEST(SweepPath, ThroughFollowsATranslatingPointExactly) {
         for (int i = 0; i <= 20; ++i) {
             const double s = i / 20.0 - 0.5;
             // Rasters are ~1000 px: a few ulps of them.
-            EXPECT_NEAR(glm::length(path.pivot + path.at(s) - raster(s)), 0.0, 1e-9) << trial << " s " << s;
-            EXPECT_NEAR(path.stretchAt(s).x, p0.z / point(s).z, 1e-12) << trial;
-            EXPECT_NEAR(path.stretchAt(s).y, p0.z / point(s).z, 1e-12) << trial;
-            EXPECT_LE(glm::length(path.at(s)), path.reach() + 1e-9);
-            raster_parabola = std::max(raster_parabola, glm::length(raster(0.0) + flat.at(s) - raster(s)));
+            EXPECT_NEAR(glm::length(path.pivot + offsetAt(path, s) - raster(s)), 0.0, 1e-9) << trial << " s " << s;
+            EXPECT_NEAR(stretchAt(path, s).x, p0.z / point(s).z, 1e-12) << trial;
+            EXPECT_NEAR(stretchAt(path, s).y, p0.z / point(s).z, 1e-12) << trial;
+            EXPECT_LE(glm::length(offsetAt(path, s)), path.reach() + 1e-9);
+            raster_parabola = std::max(raster_parabola, glm::length(raster(0.0) + offsetAt(flat, s) - raster(s)));
         }
     }
     EXPECT_GT(raster_parabola, 10.0);  // what following the raster parabola would miss (px)
@@ -176,7 +188,7 @@ TEST(SweepPath, BoundsHoldEveryPositionAndAreTight) {
         if (least < 0.1) continue;
         ++checked;
         const auto moved = [&](double s, const glm::dvec2& p) {
-            return path.pivot + path.at(s) + path.stretchAt(s) * (p - path.pivot);
+            return path.pivot + offsetAt(path, s) + stretchAt(path, s) * (p - path.pivot);
         };
         for (int m : {1, 2, 5, 17}) {
             const Bounds2 b = sweptBounds(q, path, m);
