@@ -41,6 +41,55 @@ bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<
     return true;
 }
 
+// How far different objects move relative to each other where they can meet in `tile` (eq. 24's pixel
+// rule, for what one object hides of another): for every two fragment triangles of different objects
+// whose swept boxes overlap within the tile, the largest difference of their open-to-close displacements
+// over that overlap. Each displacement is an affine map (FragmentMotion::displacement), so the difference
+// is affine and peaks at a corner of the overlap. Surfaces moving together (a propeller's co-turning
+// blades) give 0 wherever they are, where the spread of their centroids' displacements counted the turn
+// across the blades; surfaces that cross in mid-segment count though they are apart at both ends, where
+// grouping by what was near the tile at the segment's ends missed them. The pairs come from a sweep along
+// x over the boxes sorted by their left edge; a tile with one object has none.
+template <class ObjectOf>
+double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
+                      const RasterBox& tile, ObjectOf object) {
+    struct Item {
+        RasterBox box;  // swept box within the tile
+        std::uint32_t object;
+        const FragmentMotion* motion;
+    };
+    thread_local std::vector<Item> items;
+    thread_local std::vector<const Item*> active;
+    items.clear();
+    bool several = false;
+    for (const FragmentRef& ref : refs) {
+        const FragmentMotion& fm = motion[ref.layer][ref.index];
+        if (fm.crosses_near) continue;
+        const RasterBox box{glm::max(fm.swept.lo, tile.lo), glm::min(fm.swept.hi, tile.hi)};
+        if (box.empty()) continue;
+        items.push_back({box, object(ref), &fm});
+        several = several || items.back().object != items.front().object;
+    }
+    if (!several) return 0.0;
+    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.box.lo.x < b.box.lo.x; });
+    double relative = 0.0;  // a max: the same whatever order ties are in
+    active.clear();
+    for (const Item& item : items) {
+        std::erase_if(active, [&](const Item* a) { return a->box.hi.x < item.box.lo.x; });
+        for (const Item* other : active) {
+            if (other->object == item.object) continue;
+            const RasterBox meet{glm::max(item.box.lo, other->box.lo), glm::min(item.box.hi, other->box.hi)};
+            if (meet.empty()) continue;
+            for (const glm::dvec2& corner :
+                 {meet.lo, meet.hi, glm::dvec2(meet.lo.x, meet.hi.y), glm::dvec2(meet.hi.x, meet.lo.y)})
+                relative = std::max(relative,
+                                    glm::length(item.motion->displacement(corner) - other->motion->displacement(corner)));
+        }
+        active.push_back(&item);
+    }
+    return relative;
+}
+
 }  // namespace
 
 bool cameraIsStill(const Camera& camera, double t0, double t1) {
@@ -156,24 +205,6 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             // paths falls as the cube of the count; the chord's deviation, used before, is second-order
             // and asked for 4 re-clips on a pan that one serves as well). Self-occlusion inside one object is
             // left to curvature, deformation (below) and shutter segments.
-            const Tile t = grid.tile(index);
-            const double pad = 0.5 * size;
-            const auto near = [&](const glm::dvec2& q) {
-                return q.x >= t.x0 - pad && q.x <= t.x1 + pad && q.y >= t.y0 - pad && q.y <= t.y1 + pad;
-            };
-            // Per object, the box of the displacements of what is near the tile at the segment's start, and
-            // of what is near it at the end (one group would mix surfaces that pass the tile at different
-            // times). Comparing each object's field at the tile's corners instead (a triangle's turn
-            // extrapolated) kept a propeller's co-turning blades apart but made a turning bar next to a
-            // sliding box look far faster against it than where they meet.
-            using Displacements = std::vector<std::pair<std::uint32_t, RasterBox>>;
-            Displacements at_start, at_end;
-            const auto add = [](Displacements& group, std::uint32_t object, const glm::dvec2& d) {
-                for (auto& [o, box] : group)
-                    if (o == object) return box.expand(d);
-                group.push_back({object, RasterBox{}});
-                group.back().second.expand(d);
-            };
             constexpr double kChordTolerance = 0.1;  // px
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath), so a surface that turns or shears under them (a roll) is followed to
@@ -185,22 +216,10 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 const FragmentMotion& fm = motion[ref.layer][ref.index];
                 if (fm.crosses_near) continue;
                 deviation = std::max(deviation, fm.parabola_deviation);
-                const bool start = near(fm.start), end = near(fm.end);
-                if (start) add(at_start, object(ref), fm.end - fm.start);
-                if (end) add(at_end, object(ref), fm.end - fm.start);
-                if (start || end) unstretched = std::max(unstretched, fm.unstretched_error);
+                unstretched = std::max(unstretched, fm.unstretched_error);
             }
-            // Bounded by the spread of all their displacements once two objects meet.
-            const auto spread = [](const Displacements& group) {
-                if (group.size() < 2) return 0.0;
-                RasterBox all;
-                for (const auto& [o, box] : group) {
-                    all.expand(box.lo);
-                    all.expand(box.hi);
-                }
-                return glm::length(all.hi - all.lo);
-            };
-            const double relative = std::max(spread(at_start), spread(at_end));
+            const Tile t = grid.tile(index);
+            const double relative = relativeMotion(refs, motion, RasterBox{{t.x0, t.y0}, {t.x1, t.y1}}, object);
             p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), unstretched / kChordTolerance}),
                                     max_subframes,
                                     &p.capped);

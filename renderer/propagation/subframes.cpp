@@ -167,7 +167,10 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         }
     }
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
-    if (ends == 3 && vertices.size() == 3) affineMotion(open, close, out);
+    if (ends == 3 && vertices.size() == 3) {
+        affineMotion(open, close, out);
+        out.open_to_close = sourceMap(vertices[0]);
+    }
     if (out.crosses_near) {
         out.swept = RasterBox::everything();
     } else {
@@ -176,6 +179,27 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         out.max_depth += max_depth_rate * max_gap_;
     }
     return out;
+}
+
+glm::dmat2 ShutterPathSampler::sourceMap(const MeshPoint& point) const {
+    std::array<glm::dvec2, 3> open{}, close{};
+    for (int i = 0; i < 3; ++i) {
+        MeshPoint corner = point;
+        corner.b = glm::dvec3(0.0);
+        corner.b[i] = 1.0;
+        const ProjectedPoint a = project(nodes_.front().snapshot, *scene_, corner),
+                             b = project(nodes_.back().snapshot, *scene_, corner);
+        if (a.behind || b.behind) return glm::dmat2(1.0);
+        open[static_cast<std::size_t>(i)] = a.raster;
+        close[static_cast<std::size_t>(i)] = b.raster;
+    }
+    const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
+    // A face seen edge-on has no map across it; one nearly edge-on still has an exact one for motion
+    // that is affine in the image (a turn about the view axis), and its pieces are too thin to matter
+    // where it is not.
+    const double det = e1.x * e2.y - e1.y * e2.x;
+    if (!(std::abs(det) > 1e-3 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return glm::dmat2(1.0);
+    return glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
 }
 
 int subframeCount(double pixels, int max_subframes, bool* capped) {

@@ -43,11 +43,19 @@ struct FragmentMotion {
     // most half a pixel's diagonal: a fragment is a piece of the triangle within one pixel) / 2, in
     // pixels. 0 for a sliver or when a vertex reaches the camera plane.
     double unstretched_error = 0.0;
+    // The open-to-close affine map of the whole source triangle the fragment is a piece of (clipped
+    // pieces are often slivers, whose own map is ill-posed): the surface point at raster x at open is near
+    // end + open_to_close (x - start) at close, exactly for motion that is affine in the image. The
+    // identity when the source triangle is seen edge-on or reaches the camera plane.
+    glm::dmat2 open_to_close{1.0};
     // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
     // between samples) as the swept box is. Depth is affine over a planar fragment, so every point of it
     // stays within this range: what decides whether one surface stays in front of another.
     double min_depth = std::numeric_limits<double>::infinity();
     double max_depth = -std::numeric_limits<double>::infinity();
+
+    // How far the surface point at raster x at open moves by close, as open_to_close has it.
+    glm::dvec2 displacement(const glm::dvec2& x) const { return end + open_to_close * (x - start) - x; }
 };
 
 // Samples the exact vertex paths over the shutter [t0, t1]. The shutter is cut at every camera,
@@ -74,6 +82,8 @@ public:
     const std::vector<double>& breakpoints() const { return breakpoints_; }  // t0, keys inside, t1
 
 private:
+    glm::dmat2 sourceMap(const MeshPoint& point) const;  // FragmentMotion::open_to_close of point's triangle
+
     struct Node {
         MotionSnapshot snapshot;
         double weight;  // Gauss-Legendre weight x interval length; 0 for interval end points
