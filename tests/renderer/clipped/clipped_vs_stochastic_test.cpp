@@ -107,7 +107,8 @@ TEST_P(AgainstStochastic, DifferenceIsExplainedBySamplingNoise) {
 INSTANTIATE_TEST_SUITE_P(Configs, AgainstStochastic,
                          ::testing::Values("default.yaml", "table1/spin.yaml", "table1/pan.yaml",
                                            "table1/spin_pan.yaml", "table1/recede.yaml",
-                                           "table1/recede_spin_pan.yaml", "bench/propeller.yaml"),
+                                           "table1/recede_spin_pan.yaml", "bench/propeller.yaml",
+                                           "bench/crossing.yaml"),
                          [](const auto& info) {
                              std::string name = info.param.substr(info.param.find('/') + 1);
                              return name.substr(0, name.find('.'));
