@@ -30,6 +30,15 @@ Object movingQuad(double x0, double y0, double x1, double y1, double depth, glm:
     return quad;
 }
 
+// A clipped job of two quads in motion over the black background (so neither is a still backdrop).
+RenderJob twoMovingQuads(const Object& far, const Object& near) {
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.scene.objects.push_back(far);
+    job.scene.objects.push_back(near);
+    return job;
+}
+
 double maxDifference(const RenderResult& a, const RenderResult& b) {
     double worst = 0.0;
     for (const char* c : {"R", "G", "B", "A"})
@@ -281,10 +290,7 @@ TEST(SweepIntegration, AutoReclipsOnceForATilt) {
 // falls as re-clips are added, and auto picks enough. Both quads move, so neither is a still backdrop.
 TEST(SweepIntegration, OcclusionErrorFallsWithReclips) {
     const glm::dvec2 v(11.4, 3.7), w(-4.1, 1.3);
-    RenderJob job = squareFilmJob();
-    job.render.method = Method::Clipped;
-    job.scene.objects.push_back(movingQuad(1.0, 1.0, 31.0, 31.0, 10.0, w));
-    job.scene.objects.push_back(movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v));
+    RenderJob job = twoMovingQuads(movingQuad(1.0, 1.0, 31.0, 31.0, 10.0, w), movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v));
     job.render.subframes = 48;
     const RenderResult reference = renderFrame(job, 0);  // point subframes, 48 times
     std::vector<double> errors;
@@ -311,10 +317,7 @@ TEST(SweepIntegration, OcclusionErrorFallsWithReclips) {
 // shutter; auto (positions 0.05 px apart) does no worse than point subframes at its own count.
 TEST(SweepIntegration, ObjectsPassingInMidShutterReclipForTheirRelativeMotion) {
     const glm::dvec2 v(22.0, 0.0), w(-22.0, 0.0);
-    RenderJob job = squareFilmJob();
-    job.render.method = Method::Clipped;
-    job.scene.objects.push_back(movingQuad(24.0, 12.0, 30.0, 20.0, 10.0, w));
-    job.scene.objects.push_back(movingQuad(2.0, 10.0, 8.0, 22.0, 6.0, v));
+    RenderJob job = twoMovingQuads(movingQuad(24.0, 12.0, 30.0, 20.0, 10.0, w), movingQuad(2.0, 10.0, 8.0, 22.0, 6.0, v));
     job.render.subframes = 96;
     const RenderResult reference = renderFrame(job, 0);
     const double once = maxDifference(renderFrame(sweepJob(job, v, 1, 96), 0), reference);
