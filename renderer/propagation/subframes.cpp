@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 namespace clipblur {
 
@@ -36,18 +37,26 @@ void addKeyTimes(std::vector<double>& times, double t0, double t1, const auto& k
         if (key.time > t0 && key.time < t1) times.push_back(key.time);
 }
 
-// J is the affine map with J (b - a) = (b' - a') and J (c - a) = (c' - a'). A sliver's J says little:
-// where motion is not affine (a camera turn is a homography), the part of the displacement that bends
-// along its length is divided by its width. Triangles thinner than about 1:10 are left out
-// (det / (|e1|^2 + |e2|^2) is 0.5 for a right isosceles one). A fragment is placed at its interval's
-// middle and turns by half the interval's residual to either end; its vertices lie within half an edge of
-// its centre, and within half a pixel's diagonal for a piece of one pixel: hence |(J - S) e| / |e| x
-// min(|e|, sqrt 2) / 4 with one interval.
-void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close, FragmentMotion& out) {
+// J, the affine map with J (b - a) = (b' - a') and J (c - a) = (c' - a'), for a triangle a b c no thinner
+// than `thinness` (det / (|e1|^2 + |e2|^2), 0.5 for a right isosceles one).
+std::optional<glm::dmat2> openToClose(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close,
+                                      double thinness) {
     const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
     const double det = e1.x * e2.y - e1.y * e2.x;
-    if (!(std::abs(det) > 0.05 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return;
-    const glm::dmat2 j = glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
+    if (!(std::abs(det) > thinness * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return std::nullopt;
+    return glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
+}
+
+// A sliver's J says little: where motion is not affine (a camera turn is a homography), the part of the
+// displacement that bends along its length is divided by its width. Triangles thinner than about 1:10
+// are left out. A fragment is placed at its interval's middle and turns by half the interval's residual
+// to either end; its vertices lie within half an edge of its centre, and within half a pixel's diagonal
+// for a piece of one pixel: hence |(J - S) e| / |e| x min(|e|, sqrt 2) / 4 with one interval.
+void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::dvec2, 3>& close, FragmentMotion& out) {
+    const std::optional<glm::dmat2> map = openToClose(open, close, 0.05);
+    if (!map) return;
+    const glm::dmat2& j = *map;
+    const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
     // S as the sweep stretches (signedStretch).
     const glm::dmat2 residual = j - glm::dmat2(signedStretch(j, 0), 0.0, 0.0, signedStretch(j, 1));
     for (const glm::dvec2& e : {e1, e2, open[2] - open[1]}) {
@@ -193,13 +202,10 @@ glm::dmat2 ShutterPathSampler::sourceMap(const MeshPoint& point) const {
         open[static_cast<std::size_t>(i)] = a.raster;
         close[static_cast<std::size_t>(i)] = b.raster;
     }
-    const glm::dvec2 e1 = open[1] - open[0], e2 = open[2] - open[0];
     // A face seen edge-on has no map across it; one nearly edge-on still has an exact one for motion
     // that is affine in the image (a turn about the view axis), and its pieces are too thin to matter
     // where it is not.
-    const double det = e1.x * e2.y - e1.y * e2.x;
-    if (!(std::abs(det) > 1e-3 * (glm::dot(e1, e1) + glm::dot(e2, e2)))) return glm::dmat2(1.0);
-    return glm::dmat2(close[1] - close[0], close[2] - close[0]) * glm::inverse(glm::dmat2(e1, e2));
+    return openToClose(open, close, 1e-3).value_or(glm::dmat2(1.0));
 }
 
 int subframeCount(double pixels, int max_subframes, bool* capped) {
