@@ -81,6 +81,7 @@ void recordFrameStats(RenderStats& stats, const std::string& prefix, const Frame
     stats.counts[prefix + "hit_triangles"] = s.candidates.hit_triangles;
     stats.counts[prefix + "candidates"] = s.candidates.candidates;
     stats.counts[prefix + "binned_triangles"] = s.candidates.binned;
+    stats.counts[prefix + "exhaustive_tiles"] = s.candidates.exhaustive_tiles;
     stats.counts[prefix + "fragments"] = s.fragments;
     stats.counts[prefix + "shaded_pieces"] = s.shaded_pieces;
     stats.counts[prefix + "merged_triangles"] = s.merged_triangles;

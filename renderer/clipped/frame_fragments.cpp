@@ -68,6 +68,7 @@ void FrameFragmentStats::merge(const FrameFragmentStats& s) {
     candidates.hit_triangles += s.candidates.hit_triangles;
     candidates.candidates += s.candidates.candidates;
     candidates.binned += s.candidates.binned;
+    candidates.exhaustive_tiles += s.candidates.exhaustive_tiles;
     fragments += s.fragments;
     shaded_pieces += s.shaded_pieces;
     merged_triangles += s.merged_triangles;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "renderer/tiles.h"
@@ -37,6 +38,7 @@ struct CandidateStats {
     long long hit_triangles = 0;  // distinct mesh triangles hit
     long long candidates = 0;     // screen triangles handed to the clipper
     long long binned = 0;         // screen triangles whose box overlaps the tile (the exhaustive set)
+    long long exhaustive_tiles = 0;  // tiles where rays were asked for but would cost more than they cull
 };
 
 struct CandidateScratch {
@@ -45,10 +47,18 @@ struct CandidateScratch {
     std::vector<std::uint32_t> kept;
 };
 
+// Whether Embree's rays over `tile` cost less than the clipper spends on the binned triangles they
+// could cull: the boxes inside the tile of those not thin enough to be candidates anyway, plus a setup
+// per triangle, against the tile's pixels once (what is visible is clipped either way) plus the rays.
+// A wall of a few large triangles has nothing to cull, a mesh of sub-pixel triangles neither (all
+// thin); many pixel-sized triangles or large ones stacked in depth have. False for rays_per_side <= 0.
+bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binned, const Tile& tile,
+                int rays_per_side);
+
 // The screen triangles of `tile` that the clipper must see at the frame's time.
 //
-// rays_per_side == 0: every triangle whose bounding box overlaps the tile (exact, the oracle).
-// Otherwise Embree traces rays_per_side^2 rays per pixel over the tile and a one-pixel border; the
+// rays_per_side == 0, or rays would not pay off (raysPayOff): every triangle whose bounding box
+// overlaps the tile (exact, the oracle). Otherwise Embree traces rays_per_side^2 rays per pixel over the tile and a one-pixel border; the
 // candidates are the triangles hit, their one-ring neighbours in the mesh (a triangle visible only
 // between rays is usually next to one that was hit) and every triangle whose bounding box is thinner
 // than two ray spacings (it may fit between rays). What this can still miss is a large triangle seen
