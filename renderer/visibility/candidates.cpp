@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <iterator>
 
 namespace clipblur {
@@ -40,9 +41,10 @@ void sortUnique(std::vector<std::uint64_t>& v) {
 // (1.1M triangles, up to 34 per pixel) were no faster without them.
 constexpr double kTriangleSetupPixels = 4.0, kRayPixels = 1.25;
 
-// A triangle whose box is thinner than two ray spacings may fit between rays: a candidate whatever
-// they hit.
-double thinExtent(int rays_per_side) { return 2.0 / rays_per_side; }
+// Rays sample a grid of spacing 1/n. A disk as wide as the grid cell's diagonal holds a sample
+// wherever it lies, so a triangle is certain to hold one only if its inner disk is that wide; a
+// narrower one may fall between rays, at any angle, and is a candidate whatever they hit.
+double thinDiameter(int rays_per_side) { return std::sqrt(2.0) / rays_per_side; }
 
 }  // namespace
 
@@ -51,10 +53,10 @@ bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binne
     if (rays_per_side <= 0) return false;
     const double pixels = static_cast<double>(tile.width()) * tile.height();
     const double with_rays = pixels * (1.0 + kRayPixels * rays_per_side * rays_per_side);
-    const double thin = thinExtent(rays_per_side);
+    const double thin = thinDiameter(rays_per_side);
     double without = 0.0;
     for (std::uint32_t s : binned) {
-        if (frame.minExtent(s) < thin) continue;  // a candidate either way: nothing for rays to save
+        if (frame.innerDiameter(s) < thin) continue;  // a candidate either way: nothing for rays to save
         const std::array<glm::dvec2, 3>& r = frame.triangles()[s].raster;
         const double x0 = std::max(std::min({r[0].x, r[1].x, r[2].x}), static_cast<double>(tile.x0));
         const double x1 = std::min(std::max({r[0].x, r[1].x, r[2].x}), static_cast<double>(tile.x1));
@@ -109,9 +111,9 @@ void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const
     for (std::uint64_t h : scratch.ring)
         for (std::uint32_t s : frame.ofMeshTriangle(static_cast<std::uint32_t>(h >> 32), static_cast<std::uint32_t>(h)))
             out.push_back(s);
-    const double thin = thinExtent(n);
+    const double thin = thinDiameter(n);
     for (std::uint32_t s : binned)
-        if (frame.minExtent(s) < thin) out.push_back(s);
+        if (frame.innerDiameter(s) < thin) out.push_back(s);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     // Only what can touch the tile: a hit triangle's neighbours may lie elsewhere.

@@ -58,11 +58,12 @@ bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binne
 // The screen triangles of `tile` that the clipper must see at the frame's time.
 //
 // rays_per_side == 0, or rays would not pay off (raysPayOff): every triangle whose bounding box
-// overlaps the tile (exact, the oracle). Otherwise Embree traces rays_per_side^2 rays per pixel over the tile and a one-pixel border; the
-// candidates are the triangles hit, their one-ring neighbours in the mesh (a triangle visible only
-// between rays is usually next to one that was hit) and every triangle whose bounding box is thinner
-// than two ray spacings (it may fit between rays). What this can still miss is a large triangle seen
-// only through a gap narrower than the ray spacing and not adjacent to a hit; docs/design.md measures it.
+// overlaps the tile (exact, the oracle). Otherwise Embree traces rays_per_side^2 rays per pixel over
+// the tile and a one-pixel border; the candidates are the triangles hit, their one-ring neighbours in
+// the mesh (a triangle visible only between rays is usually next to one that was hit) and every
+// triangle whose inscribed circle is narrower than the ray grid's cell diagonal (it may fit between
+// rays at any angle). What this can still miss is a large triangle seen only through a gap narrower
+// than the ray spacing and not adjacent to a hit; docs/design.md measures it.
 void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const MeshAdjacency& adjacency,
                     const Projection& projection, const Tile& tile, int tile_index, int rays_per_side,
                     CandidateScratch& scratch, std::vector<std::uint32_t>& out, CandidateStats& stats);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/geometry/predicates.h"
 #include "scene/object_motion.h"
 
 namespace clipblur {
@@ -106,12 +107,13 @@ void FrameGeometry::emit(std::uint32_t object, std::uint32_t triangle, const std
     }
     if (!validScreenTriangle(s)) return;  // edge-on or degenerate: covers no area
     s.source = static_cast<std::uint32_t>(triangles_.size());
-    const glm::dvec2 lo = glm::min(s.raster[0], glm::min(s.raster[1], s.raster[2]));
-    const glm::dvec2 hi = glm::max(s.raster[0], glm::max(s.raster[1], s.raster[2]));
     mesh_items_.push_back(s.source);
     triangles_.push_back(s);
     sources_.push_back({object, triangle, bary});
-    min_extent_.push_back(std::min(hi.x - lo.x, hi.y - lo.y));
+    // Inradius = area / half-perimeter = |cross| / perimeter.
+    const double perimeter = glm::distance(s.raster[0], s.raster[1]) + glm::distance(s.raster[1], s.raster[2]) +
+                             glm::distance(s.raster[2], s.raster[0]);
+    inner_diameter_.push_back(2.0 * std::abs(orient2d(s.raster[0], s.raster[1], s.raster[2])) / perimeter);
 }
 
 std::span<const std::uint32_t> FrameGeometry::tileTriangles(int tile) const {

@@ -41,8 +41,9 @@ public:
     std::span<const std::uint32_t> tileTriangles(int tile) const;
     // Screen triangles made from mesh triangle `triangle` of `object` (0, 1 or 2 after near clipping).
     std::span<const std::uint32_t> ofMeshTriangle(std::uint32_t object, std::uint32_t triangle) const;
-    // Smaller side of the triangle's raster bounding box: thin or tiny triangles can fall between rays.
-    double minExtent(std::uint32_t screen_triangle) const { return min_extent_[screen_triangle]; }
+    // Diameter of the largest disk inside the raster triangle (twice its inradius): a triangle narrower
+    // than the diagonal of the ray grid's cell can fall between rays, at any angle.
+    double innerDiameter(std::uint32_t screen_triangle) const { return inner_diameter_[screen_triangle]; }
 
     long long meshTriangles() const { return mesh_triangles_; }
     long long clippedByNearPlane() const { return near_clipped_; }
@@ -57,7 +58,7 @@ private:
     CameraFrame camera_;
     std::vector<ScreenTriangle> triangles_;
     std::vector<SourceTriangle> sources_;
-    std::vector<double> min_extent_;
+    std::vector<double> inner_diameter_;
     std::vector<std::uint32_t> object_base_;        // first global mesh-triangle id of each object
     std::vector<std::uint32_t> mesh_offsets_;       // CSR: global mesh triangle -> screen triangles
     std::vector<std::uint32_t> mesh_items_;

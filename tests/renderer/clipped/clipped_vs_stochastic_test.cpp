@@ -141,9 +141,9 @@ TEST(ShutterSegments, SingleSegmentMissesWhatBothEndsHide) {
 }
 
 // Triangles much smaller than a pixel: Embree's rays miss many of them, and the candidate rules (one-ring
-// of every hit, plus every triangle thinner than two ray spacings) must still hand the clipper every
-// visible one. The exhaustive candidate set (visibility_rays = 0) is the oracle; results must agree to
-// float rounding.
+// of every hit, plus every triangle whose inscribed circle is narrower than the ray cell) must hand every
+// visible one to the clipper. The exhaustive candidate set (visibility_rays = 0) is the oracle; results
+// must agree to float rounding.
 TEST(Candidates, DenseMeshMatchesExhaustiveCandidates) {
     std::string text = R"(version: 1
 film: {width: 48, height: 32, background: 0.2}
