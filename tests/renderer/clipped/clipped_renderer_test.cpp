@@ -13,6 +13,7 @@ namespace clipblur {
 
 namespace {
 
+using test::movingQuad;
 using test::rasterQuad;
 using test::squareFilmJob;
 using test::worldAtRaster;
@@ -30,15 +31,6 @@ RenderJob clippedJob() {
     RenderJob job = squareFilmJob();
     job.render.method = Method::Clipped;
     return job;
-}
-
-// A quad over raster [x0,x1) x [y0,y1) at `depth` that translates by `v` pixels over the shutter.
-Object movingQuad(double x0, double y0, double x1, double y1, double depth, glm::dvec2 v) {
-    Object quad = rasterQuad(x0, y0, x1, y1, depth);
-    const glm::dvec3 shift = worldAtRaster(x0 + v.x, y0 + v.y, depth) - worldAtRaster(x0, y0, depth);
-    quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
-    quad.transform.push_back(TransformKey{1.0, shift, {1, 0, 0, 0}, glm::dvec3(1.0)});
-    return quad;
 }
 
 double maxError(const RenderResult& r, const std::vector<double>& expected) {

@@ -16,19 +16,12 @@ namespace clipblur {
 
 namespace {
 
+using test::movingQuad;
 using test::rasterQuad;
 using test::squareFilmJob;
 using test::worldAtRaster;
 
 const std::vector<float>& channel(const RenderResult& r, const char* name) { return r.image.find(name)->values; }
-
-Object movingQuad(double x0, double y0, double x1, double y1, double depth, glm::dvec2 v) {
-    Object quad = rasterQuad(x0, y0, x1, y1, depth);
-    const glm::dvec3 shift = worldAtRaster(x0 + v.x, y0 + v.y, depth) - worldAtRaster(x0, y0, depth);
-    quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
-    quad.transform.push_back(TransformKey{1.0, shift, {1, 0, 0, 0}, glm::dvec3(1.0)});
-    return quad;
-}
 
 // A clipped job of two quads in motion over the black background (so neither is a still backdrop).
 RenderJob twoMovingQuads(const Object& far, const Object& near) {
@@ -120,7 +113,9 @@ void expectOneAutoReclipThenFallingError(const CameraKey& key, double depth, std
     for (const int n : intervals) {
         job.render.subframes = n;
         const double error = rmsDifference(renderFrame(job, 0), point);
-        if (n > *intervals.begin()) EXPECT_LT(error, 0.6 * previous) << n;
+        if (n > *intervals.begin()) {
+            EXPECT_LT(error, 0.6 * previous) << n;
+        }
         previous = error;
     }
 }
