@@ -7,12 +7,15 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "renderer/clipped/frame_fragments.h"
 #include "renderer/clipped/guard_band.h"
+#include "renderer/clipped/hidden_probe.h"
 #include "renderer/clipped/motion_plan.h"
 #include "renderer/clipped/shutter_segments.h"
 #include "renderer/clipped/still_backdrop.h"
@@ -479,22 +482,36 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     RenderStats& stats = result.stats;
     stats.seconds["scene_build"] = secondsSince(start);
 
-    // Shutter segments (one unless something turns far), each rendered by the paper's method and weighted
-    // by its length. A fixed subframe count is shared out so the shutter has that many in total.
-    const auto stage = Clock::now();
-    const int segments = both_frames ? shutterSegments(scene, t0, t1, settings.segments, settings.max_segments) : 1;
+    // Shutter segments (one unless something turns far or is hidden at both ends of one), each rendered by
+    // the paper's method and weighted by its length. A fixed subframe count is shared out so the shutter
+    // has that many in total.
+    auto stage = Clock::now();
+    std::vector<ShutterSegment> segments =
+        equalSegments(t0, t1, both_frames ? shutterSegments(scene, t0, t1, settings.segments, settings.max_segments) : 1);
+    HiddenProbe probe;
+    int unsplit = 0;
+    if (both_frames && settings.segments == 0 && visibilityCanChange(scene, t0, t1)) {
+        const auto hidden = [&](double a, double b) {
+            return hidesSomethingAtBothEnds(scene, embree, ctx.projection, a, b, probe);
+        };
+        segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
+    }
+    stats.seconds["hidden_probe"] = secondsSince(stage);
+    stage = Clock::now();
     WindowSums sums(static_cast<std::size_t>(ctx.window.width) * ctx.window.height);
     SegmentTotals totals;
-    const auto segmentTime = [&](int s) { return t0 + (t1 - t0) * s / segments; };
-    std::vector<int> bands(static_cast<std::size_t>(segments));
-    for (int s = 0; s < segments; ++s)
-        bands[static_cast<std::size_t>(s)] = guardBandPixels(scene, ctx.projection, segmentTime(s), segmentTime(s + 1),
-                                                             std::max(scene.film.width, scene.film.height) / 2);
-    for (int s = 0; s < segments; ++s) {
-        const int fixed = settings.subframes > 0
-                              ? std::max(1, settings.subframes * (s + 1) / segments - settings.subframes * s / segments)
-                              : 0;
-        renderSegment(ctx, segmentTime(s), segmentTime(s + 1), fixed, 1.0 / segments, s, bands, sums, totals);
+    std::vector<int> bands;
+    for (const ShutterSegment& s : segments)
+        bands.push_back(guardBandPixels(scene, ctx.projection, s.begin, s.end,
+                                        std::max(scene.film.width, scene.film.height) / 2));
+    // A fixed count's share before a fraction of the shutter (1e-9: sums of 1/n reach whole numbers).
+    const auto before = [&](double fraction) { return static_cast<int>(std::floor(settings.subframes * fraction + 1e-9)); };
+    double share = 0.0;  // the shutter's fraction before the segment
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+        const int fixed = settings.subframes > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
+        share += segments[s].weight;
+        renderSegment(ctx, segments[s].begin, segments[s].end, fixed, segments[s].weight, static_cast<int>(s), bands,
+                      sums, totals);
     }
     stats.seconds["segments"] = secondsSince(stage);
     stats.seconds["frame_fragments"] = totals.frame_seconds;
@@ -522,7 +539,9 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.counts["frame"] = frame;
     stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
     stats.counts["tiles"] = ctx.grid.count();
-    stats.counts["segments"] = segments;
+    stats.counts["segments"] = static_cast<long long>(segments.size());
+    stats.counts["hidden_probe_samples"] = probe.samples;
+    stats.counts["hidden_probe_hits"] = probe.hidden;
     stats.counts["frame_sets"] = totals.frame_sets;
     stats.counts["guard_band_pixels"] = totals.band;
     stats.counts["still_tiles"] = totals.still_tiles;
@@ -557,9 +576,16 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         audit.merge(totals.reclip.audit);
         reportAudit(stats, audit);
     }
+    std::vector<std::string> warnings;
+    if (unsplit > 0)
+        warnings.push_back(std::to_string(unsplit) + " shutter segments still hide a surface at both ends at max_segments (" +
+                           std::to_string(settings.max_segments) + "); it may show as a hole");
     if (totals.capped_tiles > 0)
-        stats.info["warning"] = std::to_string(totals.capped_tiles) + " tiles needed more than max_subframes (" +
-                                std::to_string(settings.max_subframes) + "); motion there may strobe";
+        warnings.push_back(std::to_string(totals.capped_tiles) + " tiles needed more than max_subframes (" +
+                           std::to_string(settings.max_subframes) + "); motion there may strobe");
+    std::string joined;
+    for (const std::string& w : warnings) joined += (joined.empty() ? "" : "; ") + w;
+    if (!joined.empty()) stats.info["warning"] = joined;
     return result;
 }
 

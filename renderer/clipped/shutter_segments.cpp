@@ -63,4 +63,39 @@ int shutterSegments(const Scene& scene, double t0, double t1, int requested, int
     return std::clamp(n, 1, max_segments);
 }
 
+std::vector<ShutterSegment> equalSegments(double t0, double t1, int count) {
+    std::vector<ShutterSegment> segments;
+    double begin = t0;
+    for (int s = 1; s <= count; ++s) {
+        const double end = t0 + (t1 - t0) * s / count;  // as every segment's times have always been
+        segments.push_back({begin, end, 1.0 / count});
+        begin = end;
+    }
+    return segments;
+}
+
+std::vector<ShutterSegment> splitWhereHidden(const std::vector<ShutterSegment>& segments, int max_segments,
+                                             const std::function<bool(double, double)>& hidden, int& unsplit) {
+    unsplit = 0;
+    int count = static_cast<int>(segments.size());
+    std::vector<ShutterSegment> out;
+    std::vector<ShutterSegment> pending(segments.rbegin(), segments.rend());  // the next one last
+    while (!pending.empty()) {
+        const ShutterSegment s = pending.back();
+        pending.pop_back();
+        if (hidden(s.begin, s.end)) {
+            if (count < max_segments) {
+                const double middle = 0.5 * (s.begin + s.end);
+                pending.push_back({middle, s.end, 0.5 * s.weight});
+                pending.push_back({s.begin, middle, 0.5 * s.weight});
+                ++count;
+                continue;
+            }
+            ++unsplit;
+        }
+        out.push_back(s);
+    }
+    return out;
+}
+
 }  // namespace clipblur

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <functional>
+#include <vector>
+
 #include "scene/scene.h"
 
 namespace clipblur {
@@ -20,5 +23,20 @@ inline constexpr double kAutoSegmentTurnDegrees = 15.0;
 bool sceneIsStill(const Scene& scene, double t0, double t1);
 
 int shutterSegments(const Scene& scene, double t0, double t1, int requested, int max_segments);
+
+// One shutter segment and its share of the shutter.
+struct ShutterSegment {
+    double begin = 0.0, end = 0.0;
+    double weight = 1.0;  // 1 / count for equal segments, halved exactly by each split
+};
+
+// `count` equal segments of [t0, t1]; each boundary is computed once, so neighbours meet at the same double.
+std::vector<ShutterSegment> equalSegments(double t0, double t1, int count);
+
+// Auto segments past rotation: a segment for which `hidden(begin, end)` says something is hidden at both
+// its ends is bisected, and each half is checked again, earlier halves first, until nothing is or there
+// are max_segments. `unsplit` counts the segments still hiding something at the cap.
+std::vector<ShutterSegment> splitWhereHidden(const std::vector<ShutterSegment>& segments, int max_segments,
+                                             const std::function<bool(double, double)>& hidden, int& unsplit);
 
 }  // namespace clipblur

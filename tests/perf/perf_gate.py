@@ -40,7 +40,8 @@ MODES = {
 
 # Counts that depend only on the scene and the algorithm, not on timing or thread count.
 EXACT_COUNTS = {
-    "clipped": ["triangles", "tiles", "still_tiles", "subframes_total", "subframes_max_per_tile", "capped_tiles",
+    "clipped": ["triangles", "tiles", "segments", "hidden_probe_samples", "hidden_probe_hits", "frame_sets",
+                "still_tiles", "subframes_total", "subframes_max_per_tile", "capped_tiles",
                 "measured_fragment_paths", "propagated_triangles", "reclip_fragments", "reclip_mixed_fragments",
                 "reclip_near_clipped", "open_rays", "open_candidates", "open_fragments", "open_shaded_pieces",
                 "close_rays", "close_candidates", "close_fragments", "close_shaded_pieces"],

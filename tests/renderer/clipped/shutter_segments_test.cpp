@@ -1,5 +1,6 @@
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/quaternion.hpp>
@@ -66,6 +67,57 @@ TEST(ShutterSegments, NeighboursShareTheirEndSet) {
     job.scene.objects[0].transform.push_back(TransformKey{1.0, glm::dvec3(0.0), aboutY(40), glm::dvec3(1.0)});
     job.render.segments = 3;
     EXPECT_EQ(renderFrame(job, 0).stats.counts.at("frame_sets"), 4);
+}
+
+// Equal segments meet at one double and share the shutter equally.
+TEST(ShutterSegments, EqualSegmentsTileTheShutter) {
+    const std::vector<ShutterSegment> s = equalSegments(2.25, 3.0, 3);
+    ASSERT_EQ(s.size(), 3u);
+    EXPECT_EQ(s.front().begin, 2.25);
+    EXPECT_EQ(s.back().end, 3.0);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        EXPECT_EQ(s[i].weight, 1.0 / 3.0);
+        if (i > 0) {
+            EXPECT_EQ(s[i].begin, s[i - 1].end);
+        }
+    }
+}
+
+// A surface seen only during [0.30, 0.35] is hidden at both ends of a segment [a, b] exactly when a < 0.30
+// and b > 0.35. Bisecting [0, 1] by hand: [0, 0.5] hides it, [0, 0.25] does not, [0.25, 0.5] does,
+// [0.25, 0.375] does, its halves [0.25, 0.3125] and [0.3125, 0.375] do not, nor do [0.375, 0.5] and
+// [0.5, 1]: five segments, each weighted by its length.
+TEST(ShutterSegments, SplitWhereHiddenBisectsUntilNothingIsHidden) {
+    const auto hidden = [](double a, double b) { return a < 0.30 && b > 0.35; };
+    int unsplit = -1;
+    const std::vector<ShutterSegment> s = splitWhereHidden(equalSegments(0.0, 1.0, 1), 16, hidden, unsplit);
+    const std::vector<double> ends{0.25, 0.3125, 0.375, 0.5, 1.0};
+    ASSERT_EQ(s.size(), ends.size());
+    double begin = 0.0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        EXPECT_EQ(s[i].begin, begin);
+        EXPECT_EQ(s[i].end, ends[i]);
+        EXPECT_EQ(s[i].weight, ends[i] - begin);  // powers of two: exact
+        EXPECT_FALSE(hidden(s[i].begin, s[i].end));
+        begin = ends[i];
+    }
+    EXPECT_EQ(unsplit, 0);
+}
+
+// At the cap a segment that still hides something is kept and counted: [0, 1] and [0, 0.5] split (3
+// segments), [0.25, 0.5] would be the fourth.
+TEST(ShutterSegments, SplitWhereHiddenStopsAtTheCap) {
+    const auto hidden = [](double a, double b) { return a < 0.30 && b > 0.35; };
+    int unsplit = -1;
+    const std::vector<ShutterSegment> s = splitWhereHidden(equalSegments(0.0, 1.0, 1), 3, hidden, unsplit);
+    ASSERT_EQ(s.size(), 3u);
+    EXPECT_EQ(s[1].begin, 0.25);
+    EXPECT_EQ(s[1].end, 0.5);
+    EXPECT_EQ(unsplit, 1);
+    // Rotation segments already at the cap are checked but never split.
+    const std::vector<ShutterSegment> full = splitWhereHidden(equalSegments(0.0, 1.0, 2), 2, hidden, unsplit);
+    EXPECT_EQ(full.size(), 2u);
+    EXPECT_EQ(unsplit, 1);
 }
 
 }  // namespace clipblur

@@ -1,0 +1,83 @@
+#include "renderer/clipped/hidden_probe.h"
+
+#include <array>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include "renderer/propagation/surface_path.h"
+#include "scene/object_motion.h"
+
+namespace clipblur {
+
+namespace {
+
+// Whether the surface point is visible at the snapshot's time: in front of the camera, and the nearest
+// surface along the ray from the eye to it is the point's own triangle or no nearer than the tolerance.
+bool heldAt(const MotionSnapshot& end, const Scene& scene, const EmbreeScene& embree, const MeshPoint& point) {
+    const ProjectedPoint q = project(end, scene, point);
+    if (q.behind) return false;
+    // Unnormalised, so the point itself lies at ray distance 1.
+    const EmbreeHit hit = embree.intersect(end.camera.position, q.world - end.camera.position, end.time);
+    if (!hit.hit) return true;  // Embree's surface passes a hair behind the exact point
+    if (hit.object == static_cast<int>(point.object) && hit.triangle == point.triangle) return true;
+    return hit.distance >= 1.0 - kHeldDepthTolerance;
+}
+
+}  // namespace
+
+HiddenProbe probeHiddenAtBothEnds(const Scene& scene, const EmbreeScene& embree, const Projection& projection,
+                                  double a, double b, double at, int offset) {
+    const MotionSnapshot open(scene, projection, a), close(scene, projection, b);
+    const CameraFrame camera = evalCamera(scene.camera, at);
+    constexpr std::array<int, 4> kOffsetX{0, 1, 1, 0}, kOffsetY{0, 1, 0, 1};
+    const int ox = kOffsetX[static_cast<std::size_t>(offset & 3)], oy = kOffsetY[static_cast<std::size_t>(offset & 3)];
+    const int columns = (scene.film.width - ox + kProbeStride - 1) / kProbeStride;
+    const int rows = (scene.film.height - oy + kProbeStride - 1) / kProbeStride;
+    std::vector<HiddenProbe> per_row(static_cast<std::size_t>(std::max(rows, 0)));
+    tbb::parallel_for(0, rows, [&](int r) {
+        HiddenProbe& row = per_row[static_cast<std::size_t>(r)];
+        const double y = r * kProbeStride + oy + 0.5;
+        for (int c = 0; c < columns; ++c) {
+            const glm::dvec2 p = projection.toImagePlane(glm::dvec2(c * kProbeStride + ox + 0.5, y));
+            const EmbreeHit hit = embree.intersect(camera.position, camera.e3 + p.x * camera.e1 + p.y * camera.e2, at);
+            if (!hit.hit) continue;
+            ++row.samples;
+            const MeshPoint point{static_cast<std::uint32_t>(hit.object), hit.triangle,
+                                  glm::dvec3(1.0 - hit.u - hit.v, hit.u, hit.v)};
+            if (!heldAt(open, scene, embree, point) && !heldAt(close, scene, embree, point)) ++row.hidden;
+        }
+    });
+    HiddenProbe total;
+    for (const HiddenProbe& row : per_row) {
+        total.samples += row.samples;
+        total.hidden += row.hidden;
+    }
+    return total;
+}
+
+bool visibilityCanChange(const Scene& scene, double t0, double t1) {
+    const glm::dvec3 eye = evalCamera(scene.camera, t0).position;
+    if (evalCamera(scene.camera, t1).position != eye) return true;
+    for (const CameraKey& key : scene.camera.keys)
+        if (key.time > t0 && key.time < t1 && evalCamera(scene.camera, key.time).position != eye) return true;
+    for (const Object& object : scene.objects)
+        if (!isStatic(object, t0, t1)) return true;
+    return false;
+}
+
+bool hidesSomethingAtBothEnds(const Scene& scene, const EmbreeScene& embree, const Projection& projection,
+                              double a, double b, HiddenProbe& total) {
+    // The middle first: two objects crossing over one spot uncover it there.
+    constexpr std::array<double, 3> kAt{0.5, 0.25, 0.75};
+    for (std::size_t k = 0; k < kAt.size(); ++k) {
+        const HiddenProbe probe =
+            probeHiddenAtBothEnds(scene, embree, projection, a, b, a + (b - a) * kAt[k], static_cast<int>(k));
+        total.samples += probe.samples;
+        total.hidden += probe.hidden;
+        if (probe.hidden > 0) return true;
+    }
+    return false;
+}
+
+}  // namespace clipblur
