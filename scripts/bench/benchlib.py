@@ -99,7 +99,7 @@ def sweep_overrides(rung):
 def sweep_spacing_overrides(rung):
     o = {"render.method": "clipped", "render.time_integration": "sweep"}
     if rung != "auto":
-        o["render.sweep_spacing"] = SWEEP_SPACING_1 / int(rung)
+        o["render.sweep_spacing"] = SWEEP_SPACING_1 / float(rung)  # rungs below 1 (0.5, 0.25) are coarser
     return o
 
 

@@ -9,7 +9,9 @@ disocclusion scene, at 1280x720):
      subframes, `sweep`, sweep integration with rung r re-clips and positions 8/r px apart, and
      `sweep_spacing`, sweep integration with `auto` re-clips and positions 8/r px apart; each
      until its error is at most e256 (or --max-rung), and `auto`: time, subframes, fragments per
-     subframe, peak memory and the error e_c of each rung;
+     subframe, peak memory and the error e_c of each rung. Where sweep_spacing's first rung already
+     reaches e256 it also goes coarser (r = 1/2, 1/4, 1/8) until a rung does not, so that the time at
+     e256 is interpolated rather than bounded by the first rung's;
   3. each variant's time at e256, interpolated in log-log along its ladder, and the ratio
      (mean stochastic 256 spp time) / (that time); issue 5's goal is a ratio of at least 5;
   4. with --threads-check on: each variant's rung that reaches e256 (or `auto`) and stochastic 256 spp
@@ -68,6 +70,7 @@ THREAD_GOAL = 1.8
 # The clipped variants the ladders run: the paper's point subframes (rung = subframes) and sweep
 # integration (rung = re-clips, with positions benchlib.SWEEP_SPACING_1 / rung pixels apart).
 SWEEP_SPACING_MIN = 0.01  # px, render.sweep_spacing's lower bound (docs/config.md)
+COARSEST_SPACING_RUNG = 1 / 8  # sweep_spacing below rung 1: positions up to 64 px apart
 METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "sweep": benchlib.sweep_overrides,
            "sweep_spacing": benchlib.sweep_spacing_overrides}
 # Both seeds differ from benchlib.REFERENCE_SEED and from each other: independent sample streams.
@@ -171,14 +174,10 @@ def measure_scene(clipblur, scene, args, out, log=print):
     result = {"scene": scene, "t_stochastic": t_stochastic, "e256": pair.e256, "e256_sq_se": pair.e256_sq_se}
     for method in args.methods:
         overrides = METHODS[method]
-        reaching = None
-        for rung in rungs + ["auto"]:
-            if rung != "auto" and reaching is not None:
-                continue
+
+        def run(rung):
+            """Renders one rung and returns its error against the pair."""
             o = dict(base, **overrides(rung))
-            # The sweep ladders stop where the spacing would fall below what a job may ask for.
-            if rung != "auto" and float(o.get("render.sweep_spacing", SWEEP_SPACING_MIN)) < SWEEP_SPACING_MIN:
-                continue
             image = folder / f"{method}_{rung}.exr"
             stats = benchlib.render(clipblur, config, o, image, args.threads)
             e, se, noise = pair.clipped_error(image)
@@ -186,8 +185,25 @@ def measure_scene(clipblur, scene, args, out, log=print):
             rows.append(rw)
             log(f"  {method} {str(rung):>5s}  {rw['seconds']:8.3f} s  subframes {rw['subframes_total']} "
                 f"(max/tile {rw['subframes_max_per_tile']})  error {'<= ' if noise else ''}{e:.4g}")
-            if rung != "auto" and e <= pair.e256:
+            return e
+
+        reaching = None
+        for rung in rungs + ["auto"]:
+            if rung != "auto" and reaching is not None:
+                continue
+            # The sweep ladders stop where the spacing would fall below what a job may ask for.
+            if rung != "auto" and float(overrides(rung).get("render.sweep_spacing", SWEEP_SPACING_MIN)) < SWEEP_SPACING_MIN:
+                continue
+            if run(rung) <= pair.e256 and rung != "auto":
                 reaching = rung
+        # A first rung already at e256 only bounds the time from above; positions can also be coarser
+        # than the first rung's (16, 32, 64 px apart), so go down until a rung is above e256 and the time
+        # is interpolated between two rungs like every other scene's.
+        if method == "sweep_spacing" and reaching == rungs[0]:
+            rung = rungs[0] / 2
+            while rung >= COARSEST_SPACING_RUNG and run(rung) <= pair.e256:
+                reaching = rung
+                rung /= 2
         ladder = [rw for rw in rows if rw["role"] == method]
         t = benchlib.time_to_reach([(rw["seconds"], rw["error"]) for rw in ladder], pair.e256)
         result[method] = {"t": t, "ratio": t_stochastic / t if t else None, "reaching": reaching,
