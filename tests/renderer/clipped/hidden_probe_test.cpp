@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
@@ -134,6 +137,32 @@ TEST(HiddenProbe, AutoSegmentsDrawTheWallBothEndsHide) {
     // Each covered pixel's areas sum to one up to float rounding of the coverage sums.
     EXPECT_LT(error(automatic).second, 1e-5);
     EXPECT_EQ(automatic.image.find("R")->values, two.image.find("R")->values);  // the same two segments
+}
+
+// At max_segments the hole cannot be split away: the render keeps the one segment and says so.
+TEST(HiddenProbe, SegmentsLeftHidingSomethingAtTheCapAreWarnedAbout) {
+    RenderJob job = crossingJob();
+    job.render.max_segments = 1;
+    const RenderResult capped = renderFrame(job, 0);
+    EXPECT_EQ(capped.stats.counts.at("segments"), 1);
+    EXPECT_EQ(capped.stats.counts.at("hidden_probe_hits"), 64);
+    ASSERT_EQ(capped.stats.info.count("warning"), 1u);
+    EXPECT_NE(capped.stats.info.at("warning").find("1 shutter segments still hide a surface"), std::string::npos);
+}
+
+// The probe's counts are integers summed in row order, so the split and the image do not depend on the
+// thread count.
+TEST(HiddenProbe, SameSplitForOneAndTwoThreads) {
+    const RenderJob job = crossingJob();
+    std::vector<RenderResult> results;
+    for (int threads : {1, 2}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        results.push_back(renderFrame(job, 0));
+    }
+    for (const char* count : {"segments", "hidden_probe_samples", "hidden_probe_hits"})
+        EXPECT_EQ(results[0].stats.counts.at(count), results[1].stats.counts.at(count)) << count;
+    for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
+        EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
 }
 
 }  // namespace clipblur
