@@ -376,11 +376,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 interval.end = &*end;
                 interval.positions = positions[static_cast<std::size_t>(k)];
                 const IntervalTurns& turn = turns[static_cast<std::size_t>(k)];
-                if (n == intervals && !turn.at_positions.empty()) {
-                    interval.turns = turn.at_positions;
-                    interval.unturn_begin = turn.unturn_begin;
-                    interval.unturn_end = turn.unturn_end;
-                }
+                if (n == intervals && !turn.at_positions.empty()) interval.turns = &turn;
             }
             reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile,
                            sweeping ? &interval : nullptr, settings.audit, scratch,

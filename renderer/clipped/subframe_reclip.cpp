@@ -80,9 +80,10 @@ std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& swee
     const MeshPoint point{source.object, source.triangle, bary};
     const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
     if (a.behind || b.behind) return std::nullopt;
+    if (!sweep.turns) return SweepPath::through(a.raster, a.depth, at, 1.0 / sample.inv_depth, b.raster, b.depth);
     SweepPath path = SweepPath::through(a.raster, a.depth, at, 1.0 / sample.inv_depth, b.raster, b.depth,
-                                        sweep.unturn_begin, sweep.unturn_end);
-    path.turns = sweep.turns;
+                                        sweep.turns->unturn_begin, sweep.turns->unturn_end);
+    path.turns = sweep.turns->at_positions;
     return path;
 }
 

@@ -50,6 +50,15 @@ struct TileSums {
     }
 };
 
+// A turning camera over a sweep interval [begin, end]: its turn from the middle to each of `positions`
+// equally spaced times (the midpoints, as the sweep places fragments) and the inverse turns at begin and
+// end; no turns when its orientation is the same at all positions. The same for every tile of the interval.
+struct IntervalTurns {
+    std::vector<glm::dmat3> at_positions;
+    glm::dmat3 unturn_begin{1.0}, unturn_end{1.0};
+};
+IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, double begin, double end, int positions);
+
 // Sweep integration (render.time_integration: sweep): the subframe at time t stands for the interval
 // [begin, end] around it. Each re-clipped fragment is moved along the path of the surface point under its
 // centroid (the parabola through its exact positions at begin, t and end), stretched along the raster axes
@@ -67,20 +76,9 @@ struct SweepInterval {
     double reach = 0.0;
     Tile resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
     Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
-    // A turning camera: its turn from t at each position (SweepPath::turns), and back to t from begin and
-    // end; empty and identities when it does not turn (IntervalTurns).
-    std::span<const glm::dmat3> turns;
-    glm::dmat3 unturn_begin{1.0}, unturn_end{1.0};
+    // A turning camera's turns over the interval, shared by its tiles; null when it does not turn.
+    const IntervalTurns* turns = nullptr;
 };
-
-// A turning camera over a sweep interval [begin, end]: its turn from the middle to each of `positions`
-// equally spaced times (the midpoints, as the sweep places fragments) and the inverse turns at begin and
-// end; no turns when its orientation is the same at all positions. The same for every tile of the interval.
-struct IntervalTurns {
-    std::vector<glm::dmat3> at_positions;
-    glm::dmat3 unturn_begin{1.0}, unturn_end{1.0};
-};
-IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, double begin, double end, int positions);
 
 // Sweep: one polygon to sweep and what it adds per px^2 of its footprint. Texture pieces add only their
 // colour difference (coverage false); fragments add colour, coverage, motion and depth.
