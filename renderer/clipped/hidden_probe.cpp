@@ -57,10 +57,8 @@ HiddenProbe probeHiddenAtBothEnds(const Scene& scene, const EmbreeScene& embree,
 }
 
 bool visibilityCanChange(const Scene& scene, double t0, double t1) {
-    const glm::dvec3 eye = evalCamera(scene.camera, t0).position;
-    if (evalCamera(scene.camera, t1).position != eye) return true;
-    for (const CameraKey& key : scene.camera.keys)
-        if (key.time > t0 && key.time < t1 && evalCamera(scene.camera, key.time).position != eye) return true;
+    const auto same_eye = [](const CameraFrame& a, const CameraFrame& b) { return a.position == b.position; };
+    if (!cameraKeeps(scene.camera, t0, t1, same_eye)) return true;
     for (const Object& object : scene.objects)
         if (!isStatic(object, t0, t1)) return true;
     return false;

@@ -93,15 +93,9 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
 }  // namespace
 
 bool cameraIsStill(const Camera& camera, double t0, double t1) {
-    std::vector<double> times{t0, t1};
-    for (const CameraKey& k : camera.keys)
-        if (k.time > t0 && k.time < t1) times.push_back(k.time);
-    const CameraFrame a = evalCamera(camera, t0);
-    for (double t : times) {
-        const CameraFrame b = evalCamera(camera, t);
-        if (a.position != b.position || a.e1 != b.e1 || a.e3 != b.e3) return false;
-    }
-    return true;
+    return cameraKeeps(camera, t0, t1, [](const CameraFrame& a, const CameraFrame& b) {
+        return a.position == b.position && a.e1 == b.e1 && a.e3 == b.e3;
+    });
 }
 
 MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,

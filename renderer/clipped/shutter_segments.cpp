@@ -43,14 +43,10 @@ double largestTurn(const Scene& scene, double t0, double t1) {
 }
 
 bool sceneIsStill(const Scene& scene, double t0, double t1) {
-    const CameraFrame open = evalCamera(scene.camera, t0);
-    const auto same = [&](double t) {
-        const CameraFrame c = evalCamera(scene.camera, t);
-        return c.position == open.position && c.e1 == open.e1 && c.e2 == open.e2 && c.e3 == open.e3;
+    const auto same = [](const CameraFrame& a, const CameraFrame& b) {
+        return a.position == b.position && a.e1 == b.e1 && a.e2 == b.e2 && a.e3 == b.e3;
     };
-    if (!same(t1)) return false;
-    for (const CameraKey& key : scene.camera.keys)
-        if (key.time > t0 && key.time < t1 && !same(key.time)) return false;
+    if (!cameraKeeps(scene.camera, t0, t1, same)) return false;
     for (const Object& object : scene.objects)
         if (!isStatic(object, t0, t1)) return false;
     return true;
