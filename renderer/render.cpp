@@ -4,6 +4,7 @@
 
 #include "renderer/clipped/clipped_renderer.h"
 #include "renderer/stochastic/stochastic_renderer.h"
+#include "renderer/stopwatch.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -19,7 +20,9 @@ DataWindow renderWindow(const RenderJob& job) {
     return w;
 }
 
-RenderResult renderFrame(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
+namespace {
+
+RenderResult renderWithMethod(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     switch (job.render.method) {
         case Method::Stochastic:
             return renderStochastic(job, frame, callbacks);
@@ -30,6 +33,15 @@ RenderResult renderFrame(const RenderJob& job, int frame, const RenderCallbacks&
             return renderAccumulation(job, frame, callbacks);
     }
     throw Error(ExitCode::Internal, std::string("unknown method ") + methodName(job.render.method));
+}
+
+}  // namespace
+
+RenderResult renderFrame(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
+    const double cpu_start = processCpuSeconds();
+    RenderResult result = renderWithMethod(job, frame, callbacks);
+    result.stats.seconds["cpu"] = processCpuSeconds() - cpu_start;
+    return result;
 }
 
 }  // namespace clipblur
