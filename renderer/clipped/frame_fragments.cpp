@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "renderer/fragments/fragment_tile.h"
@@ -93,6 +94,12 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
     std::vector<TileOutput> outputs(static_cast<std::size_t>(grid.count()));
     std::atomic<bool> cancelled{false};
 
+    // Scratch per thread, reused by its tiles (cleared on every use; nothing here starts TBB work).
+    struct Scratch {
+        CandidateScratch candidates;
+        TileScratch tile;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratches;
     tbb::parallel_for(0, grid.count(), [&](int index) {
         if (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
@@ -100,9 +107,9 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         }
         const Tile tile = grid.tile(index);
         TileOutput& out = outputs[static_cast<std::size_t>(index)];
-        CandidateScratch candidate_scratch;
+        Scratch& scratch = scratches.local();
         std::vector<std::uint32_t> candidates;
-        findCandidates(frame, embree, adjacency, projection, tile, index, options.rays_per_side, candidate_scratch,
+        findCandidates(frame, embree, adjacency, projection, tile, index, options.rays_per_side, scratch.candidates,
                        candidates, out.stats.candidates);
         if (options.leave_out)
             std::erase_if(candidates, [&](std::uint32_t c) { return (*options.leave_out)[frame.source(c).object] != 0; });
@@ -110,9 +117,8 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         local.reserve(candidates.size());
         for (std::uint32_t c : candidates) local.push_back(frame.triangles()[c]);
 
-        TileScratch scratch;
         FragmentTile fragments;
-        resolveTile(local, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch, fragments);
+        resolveTile(local, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch.tile, fragments);
         out.stats.rejected_triangles += fragments.rejected_triangles;
         out.stats.dropped_area += fragments.dropped_area;
         if (options.audit) auditTile(local, fragments, out.stats.audit);
