@@ -60,6 +60,8 @@ public:
     bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double max_distance, double t) const;
 
     double embreeTime(double t) const;
+    // Scene::objects index of an Embree geometry ID (objects without triangles have none).
+    int objectOfGeometry(unsigned geometry) const { return object_of_geometry_[geometry]; }
     double t0() const { return t0_; }
     double t1() const { return t1_; }
     int timeSteps(int object) const { return steps_[static_cast<std::size_t>(object)]; }
