@@ -23,4 +23,15 @@ CameraFrame CameraPath::at(double t) const {
     return segments_[i].at(f);
 }
 
+CameraTable::CameraTable(const CameraPath& path, double t0, double t1, int steps) : t0_(t0) {
+    if (!(t1 > t0) || steps < 1) {
+        frames_.push_back(path.at(t0));
+        return;
+    }
+    steps_per_time_ = steps / (t1 - t0);
+    frames_.reserve(static_cast<std::size_t>(steps) + 1);
+    for (int i = 0; i <= steps; ++i) frames_.push_back(path.at(i == steps ? t1 : t0 + (t1 - t0) * i / steps));
+    last_ = static_cast<double>(steps);
+}
+
 }  // namespace clipblur

@@ -89,9 +89,15 @@ SurfaceGeometry Shader::geometry(const SurfacePoint& sp) const {
     const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
     const double len = glm::length(n);
     g.normal = len > 0.0 ? n / len : glm::dvec3(0.0);
-    const auto& rest = object.mesh.positions;
-    g.object_position = w * rest[tri[0]] + sp.u * rest[tri[1]] + sp.v * rest[tri[2]];
+    g.object_position = objectPosition(sp);
     return g;
+}
+
+glm::dvec3 Shader::objectPosition(const SurfacePoint& sp) const {
+    const Object& object = scene_.objects[static_cast<std::size_t>(sp.object)];
+    const auto& tri = object.mesh.triangles[sp.triangle];
+    const auto& rest = object.mesh.positions;
+    return (1.0 - sp.u - sp.v) * rest[tri[0]] + sp.u * rest[tri[1]] + sp.v * rest[tri[2]];
 }
 
 glm::dvec3 Shader::shade(const SurfacePoint& point, const glm::dvec3& eye, long long* shadow_rays) const {
@@ -108,15 +114,16 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surfa
         n = -n;
     }
     glm::dvec3 light_sum = scene_.ambient;
-    // Shadow rays start slightly off the surface: Embree intersects in float, so the hit point is only
-    // known to ~1e-7 relative; 1e-4 relative clears self-intersection without visibly shifting shadows.
-    const double offset = 1e-4 * std::max({1.0, std::fabs(surface.position.x), std::fabs(surface.position.y),
-                                           std::fabs(surface.position.z)});
     for (const Light& light : scene_.lights) {
         glm::dvec3 to_light;
         const glm::dvec3 e = lightIrradiance(light, surface.position, n, &to_light);
         if (e == glm::dvec3(0.0)) continue;
         if (shadows_) {
+            // Shadow rays start slightly off the surface: Embree intersects in float, so the hit point is
+            // only known to ~1e-7 relative; 1e-4 relative clears self-intersection without visibly shifting
+            // shadows.
+            const double offset = 1e-4 * std::max({1.0, std::fabs(surface.position.x), std::fabs(surface.position.y),
+                                                   std::fabs(surface.position.z)});
             const glm::dvec3 origin = surface.position + offset * n;
             const bool point_light = light.kind == Light::Kind::Point;
             const glm::dvec3 dir = point_light ? light.position - origin : to_light;

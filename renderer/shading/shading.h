@@ -42,6 +42,8 @@ public:
     Shader(const Scene& scene, double t0, double t1, const EmbreeScene* shadows = nullptr);
 
     SurfaceGeometry geometry(const SurfacePoint& point) const;
+    // The point on the rest mesh (what textures read): no motion to evaluate.
+    glm::dvec3 objectPosition(const SurfacePoint& point) const;
     // `eye` is the camera position at point.time; `shadow_rays` (optional) is incremented per ray cast.
     glm::dvec3 shade(const SurfacePoint& point, const glm::dvec3& eye, long long* shadow_rays = nullptr) const;
     glm::dvec3 shade(const SurfacePoint& point, const SurfaceGeometry& surface, const glm::dvec3& eye,

@@ -208,6 +208,7 @@ EmbreeHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& dir
     hit.u = rh.hit.u;
     hit.v = rh.hit.v;
     hit.distance = rh.ray.tfar;
+    hit.normal = glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     return hit;
 }
 

@@ -19,6 +19,7 @@ struct EmbreeHit {
     double u = 0.0;              // Embree barycentrics: p = (1-u-v) v0 + u v1 + v v2
     double v = 0.0;
     double distance = 0.0;       // ray parameter: with an unnormalised direction, in units of that direction
+    glm::dvec3 normal{0.0};      // unnormalised, along (v1-v0) x (v2-v0) of the triangle as hit at the ray's time
 };
 
 struct EmbreeSceneStats {
