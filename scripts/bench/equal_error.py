@@ -12,9 +12,13 @@ disocclusion scene, at 1280x720):
      subframe, peak memory and the error e_c of each rung. Where sweep_spacing's first rung already
      reaches e256 it also goes coarser (r = 1/2, 1/4, 1/8) until a rung does not, so that the time at
      e256 is interpolated rather than bounded by the first rung's;
-  3. each variant's time at e256, interpolated in log-log along its ladder, and the ratio
-     (mean stochastic 256 spp time) / (that time); issue 5's goal is a ratio of at least 5;
-  4. with --threads-check on: each variant's rung that reaches e256 (or `auto`) and stochastic 256 spp
+  3. the strongest peer (issue 19): the plain Embree loop (scripts/bench/peers.py) at 256 spp, its
+     error e_l against sbar as for a clipped render below (it is independent of s1 and s2), and its
+     time scaled to e256 as t_l (e_l / e256)^2 (error ~ 1/sqrt(samples)); the peer is the faster of
+     it and stochastic at e256;
+  4. each variant's time at e256, interpolated in log-log along its ladder, and the ratio
+     (the peer's time at e256) / (that time), beside the ratio to stochastic; the goal is at least 5;
+  5. with --threads-check on: each variant's rung that reaches e256 (or `auto`) and stochastic 256 spp
      at 1 and at 2 threads, the clipped ones --thread-repeats times alternating (the fastest of each
      counts); the speed-up t1 / t2 (goal for clipped: at least 1.8), and whether all the images are
      bit-identical (they must be: random streams never depend on the thread count).
@@ -61,6 +65,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import benchlib  # noqa: E402
+import peers  # noqa: E402
 
 DEFAULT_SCENES = ["table1_spin", "table1_pan", "table1_spin_pan", "table1_recede", "table1_recede_spin_pan",
                   "propeller", "sweep"]
@@ -75,6 +80,7 @@ METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "
            "sweep_spacing": benchlib.sweep_spacing_overrides}
 # Both seeds differ from benchlib.REFERENCE_SEED and from each other: independent sample streams.
 DEFAULT_SEEDS = (1001, 2002)
+LOOP_SEED = 3003  # the plain loop's own stream, independent of the pair's
 
 CSV_FIELDS = ["scene", "role", "method", "param", "seed", "threads", "seconds", "subframes_total",
               "subframes_max_per_tile", "reclip_fragments", "fragments_per_subframe", "peak_memory_mb",
@@ -165,13 +171,23 @@ def measure_scene(clipblur, scene, args, out, log=print):
     t_stochastic = sum(rw["seconds"] for rw in rows) / len(rows)
     log(f"  stochastic {SPP} spp  {rows[0]['seconds']:.3f} s, {rows[1]['seconds']:.3f} s  "
         f"e256 {pair.e256:.4g} (SE of e256^2 {pair.e256_sq_se / pair.e256 ** 2 if pair.e256 else 0:.1%})")
+    # The strongest peer (issue 19): the plain Embree loop at 256 spp, its time scaled to e256 by
+    # error ~ 1/sqrt(samples), against clipblur's stochastic; ratios are against the faster of the two.
+    loop_image = folder / f"plain_loop_{SPP}.exr"
+    t_loop = peers.plain_loop(peers.plain_loop_binary(clipblur), config, SPP, LOOP_SEED, loop_image, args.threads,
+                              (args.width, args.height))
+    e_loop, _, _ = pair.clipped_error(loop_image)
+    t_loop_e256 = t_loop * (e_loop / pair.e256) ** 2 if pair.e256 > 0 else t_loop
+    peer, t_peer = ("plain loop", t_loop_e256) if t_loop_e256 < t_stochastic else ("stochastic", t_stochastic)
+    log(f"  plain loop {SPP} spp  {t_loop:.3f} s  error {e_loop:.4g}: {t_loop_e256:.3f} s at e256; peer: {peer}")
 
     rungs = []
     n = 1
     while n <= args.max_rung:
         rungs.append(n)
         n *= 2
-    result = {"scene": scene, "t_stochastic": t_stochastic, "e256": pair.e256, "e256_sq_se": pair.e256_sq_se}
+    result = {"scene": scene, "t_stochastic": t_stochastic, "e256": pair.e256, "e256_sq_se": pair.e256_sq_se,
+              "t_loop": t_loop, "e_loop": e_loop, "t_loop_e256": t_loop_e256, "peer": peer, "t_peer": t_peer}
     for method in args.methods:
         overrides = METHODS[method]
 
@@ -206,7 +222,8 @@ def measure_scene(clipblur, scene, args, out, log=print):
                 rung /= 2
         ladder = [rw for rw in rows if rw["role"] == method]
         t = benchlib.time_to_reach([(rw["seconds"], rw["error"]) for rw in ladder], pair.e256)
-        result[method] = {"t": t, "ratio": t_stochastic / t if t else None, "reaching": reaching,
+        result[method] = {"t": t, "ratio": t_peer / t if t else None,
+                          "ratio_stochastic": t_stochastic / t if t else None, "reaching": reaching,
                           "best_error": min(rw["error"] for rw in ladder),
                           "auto": next(rw for rw in ladder if rw["param"] == "auto")}
 
@@ -247,9 +264,10 @@ def fmt(x, spec=".3f"):
 
 
 def summarise(results, rows):
-    lines = [f"| scene | method | stochastic {SPP} spp s (mean of 2) | e256 | clipped s at e256 | ratio (goal >= {RATIO_GOAL:g}) "
+    lines = [f"| scene | method | stochastic {SPP} spp s (mean of 2) | e256 | plain loop s at e256 | peer | clipped s at e256 "
+             f"| ratio to the peer (goal >= {RATIO_GOAL:g}) | ratio to stochastic "
              "| first rung <= e256 | auto: max subframes/tile | auto s | auto error |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in results:
         rel = f" (SE of e256^2 {r['e256_sq_se'] / r['e256'] ** 2:.1%})" if r["e256"] > 0 else ""
         for method in METHODS:
@@ -258,12 +276,14 @@ def summarise(results, rows):
                 continue
             a = m["auto"]
             if m["t"] is None:
-                t_cell, ratio_cell = f"not reached (best error {m['best_error']:.4g})", "-"
+                t_cell, ratio_cell, stochastic_cell = f"not reached (best error {m['best_error']:.4g})", "-", "-"
             else:
                 ok = "met" if m["ratio"] >= RATIO_GOAL else "not met"
                 t_cell, ratio_cell = f"{m['t']:.3f}", f"{m['ratio']:.3g} ({ok})"
-            lines.append(f"| {r['scene']} | {method} | {r['t_stochastic']:.3f} | {r['e256']:.4g}{rel} | {t_cell} | "
-                         f"{ratio_cell} | {fmt(m['reaching'], '')} | {a['subframes_max_per_tile']} | {a['seconds']:.3f} | "
+                stochastic_cell = f"{m['ratio_stochastic']:.3g}"
+            lines.append(f"| {r['scene']} | {method} | {r['t_stochastic']:.3f} | {r['e256']:.4g}{rel} | "
+                         f"{r['t_loop_e256']:.3f} | {r['peer']} | {t_cell} | "
+                         f"{ratio_cell} | {stochastic_cell} | {fmt(m['reaching'], '')} | {a['subframes_max_per_tile']} | {a['seconds']:.3f} | "
                          f"{'<= ' if a['within_noise'] else ''}{a['error']:.4g} |")
     text = "\n".join(lines) + "\n"
 
