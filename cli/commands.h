@@ -23,6 +23,10 @@ Action addPathsCommand(CLI::App& app);
 // writing the frame; exit code 130.
 Action addRenderCommand(CLI::App& app);
 
+// `clipblur scene-json JOB [--set key=value]...`: prints the loaded, expanded scene as JSON
+// (cli/scene_json_command.h), for external peers that rebuild the scene (scripts/bench/cycles_peer.py).
+Action addSceneJsonCommand(CLI::App& app);
+
 Action addMergeCommand(CLI::App& app);
 Action addSubmitCommand(CLI::App& app);
 

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
 
     add(cli::addValidateCommand);
     add(cli::addRenderCommand);
+    add(cli::addSceneJsonCommand);
 
     add(cli::addMergeCommand);
     add(cli::addSubmitCommand);
