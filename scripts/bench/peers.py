@@ -9,7 +9,11 @@ least loop seconds (scene build excluded: the loop's own timer, clipblur's stats
 RMSE against the reference (first repeat), and clipblur's ratios to the loop. Goals (issue 19): time
 per sample within 1.15x of the loop, RMSE within 1.1x.
 
-    scripts/bench/peers.py [--spp 256] [--width 640 --height 360] [--threads 2] [--scenes spin_pan_checker,...] [--out build/bench/peers]
+    scripts/bench/peers.py [--spp 256] [--width 640 --height 360] [--threads 2] [--scenes spin_pan_checker,...]
+                           [--cycles] [--ladder 16,64,256,1024] [--out build/bench/peers]
+
+With --ladder, also one render per renderer and rung and a chart of RMSE against seconds per scene
+(<out>/<scene>_<size>_ladder.png/.svg).
 """
 
 import argparse
@@ -57,21 +61,34 @@ def measure_scene(args, clipblur, loop, config, log):
         log(f"  reference: plain loop at {args.reference_spp} spp")
         folder.mkdir(parents=True, exist_ok=True)
         plain_loop(loop, config, args.reference_spp, benchlib.REFERENCE_SEED, reference, args.threads, size)
-    runners = {"plain loop": lambda image: plain_loop(loop, config, args.spp, 1, image, args.threads, size),
-               "clipblur stochastic": lambda image: clipblur_stochastic(clipblur, config, args.spp, 1, image,
-                                                                        args.threads, size)}
+    runners = {"plain loop": lambda spp, image: plain_loop(loop, config, spp, 1, image, args.threads, size),
+               "clipblur stochastic": lambda spp, image: clipblur_stochastic(clipblur, config, spp, 1, image,
+                                                                             args.threads, size)}
     if args.cycles:
         import cycles_peer  # noqa: E402  (only with --cycles: it needs blender)
-        runners["Cycles"] = lambda image: cycles_peer.render(config, args.spp, image, args.threads, size)
+        runners["Cycles"] = lambda spp, image: cycles_peer.render(config, spp, image, args.threads, size,
+                                                                  clipblur=clipblur)
+
+    ladder = {}
+    for spp in args.ladder:  # error against time per renderer: the chart (one render per rung)
+        for name, run in runners.items():
+            image = folder / f"{name.replace(' ', '_')}_ladder_{spp}.exr"
+            t = run(spp, image)
+            ladder.setdefault(name, []).append((t, benchlib.image_error(reference, image)["rmse"], spp))
     seconds = {name: [] for name in runners}
     errors = {}
     for i in range(args.repeats):
         for name, run in runners.items():  # alternating, so a burst of load hits all of them
             image = folder / f"{name.replace(' ', '_')}_{args.spp}.exr"
-            seconds[name].append(run(image))
+            seconds[name].append(run(args.spp, image))
             if i == 0:
                 errors[name] = benchlib.image_error(reference, image)["rmse"]
-    return {name: {"seconds": min(s), "all_seconds": s, "rmse": errors[name]} for name, s in seconds.items()}
+    if ladder:
+        benchlib.gnuplot_chart(Path(args.out) / f"{folder.name}_ladder",
+                               f"{config.stem} {args.width}x{args.height}: RMSE against time (labels: spp)",
+                               list(ladder.items()), "seconds (scene build excluded)", "RMSE")
+    return {name: {"seconds": min(s), "all_seconds": s, "rmse": errors[name], "ladder": ladder.get(name, [])}
+            for name, s in seconds.items()}
 
 
 def table(results, spp):
@@ -94,12 +111,14 @@ def main():
     ap.add_argument("--reference-spp", type=int, default=4096)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--ladder", default="", help="spp rungs for an RMSE-against-time chart, e.g. 16,64,256,1024")
     ap.add_argument("--scenes", help="comma-separated names from configs/bench/peers (default all)")
     ap.add_argument("--cycles", action="store_true", help="also Blender Cycles (scripts/bench/cycles_peer.py)")
     ap.add_argument("--refresh", action="store_true", help="render the references again")
     ap.add_argument("--out", default=str(benchlib.REPO / "build" / "bench" / "peers"))
     ap.add_argument("--clipblur", help="path of the clipblur binary (default build/clipblur or $CLIPBLUR)")
     args = ap.parse_args()
+    args.ladder = [int(x) for x in args.ladder.split(",") if x]
     try:
         benchlib.require_tool("oiiotool")
         clipblur = benchlib.find_clipblur(args.clipblur)
@@ -119,7 +138,7 @@ def main():
         (out / "peers.json").write_text(json.dumps(record, indent=2) + "\n")
         print(table(results, args.spp))
         print(f"wrote {out / 'peers.json'}")
-    except benchlib.BenchError as e:
+    except (benchlib.BenchError, RuntimeError) as e:
         print(f"peers: {e}", file=sys.stderr)
         return 2
     return 0
