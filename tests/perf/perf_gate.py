@@ -10,9 +10,10 @@ tests/perf/thresholds.json:
     Every render of one gate run is pinned to the same CPU: on these virtual machines one core can run
     30 % slower than the other for minutes (a busy sibling on the host), which alone moved single
     renders by that much. The baseline's sample count makes its run about as long as the clipped ones,
-    so fixed costs weigh alike; the minimum of the repeats is the least disturbed. The limit is the committed ratio times a
-    slack below 1.5, so a 1.5x slowdown fails. Ratios between Embree's SIMD traversal and the clipped
-    scalar code differ between CPU models, so each model has its own committed ratio;
+    so fixed costs weigh alike; the minimum of the repeats is the least disturbed. The limit is the
+    committed ratio times a slack below 1.5, so a 1.5x slowdown fails. Ratios between Embree's SIMD
+    traversal and the clipped scalar code differ between CPU models, so each model has its own
+    committed ratio;
   - EXACT noise-free counts from the stats (subframes, fragments, candidates, rays), which change
     only when the algorithm does, and must not differ between repeats.
 

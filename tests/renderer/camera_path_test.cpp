@@ -9,11 +9,21 @@
 
 namespace clipblur {
 
-TEST(CameraPath, MatchesEvalCameraBitForBit) {
+namespace {
+
+// Three keys that move, roll, pan and tilt, with the turn changing axis and rate at t = 1.
+Camera threeKeyCamera() {
     Camera camera;
     camera.keys = {CameraKey{0.0, {0, 2, -8}, {0, -1.5, 8}, {0, 1, 0}},
                    CameraKey{1.0, {0.5, 2, -8}, {0.3, -1.5, 8}, {0.1, 1, 0}},
                    CameraKey{2.5, {1, 3, -7}, {-0.4, -1, 8}, {0, 1, 0.2}}};
+    return camera;
+}
+
+}  // namespace
+
+TEST(CameraPath, MatchesEvalCameraBitForBit) {
+    const Camera camera = threeKeyCamera();
     const CameraPath path(camera);
     const HashRng rng = HashRng::forKey(3, 0);
     for (int i = 0; i < 500; ++i) {
@@ -29,18 +39,11 @@ TEST(CameraPath, MatchesEvalCameraBitForBit) {
     }
 }
 
-}  // namespace clipblur
-
-namespace clipblur {
-
 // The table against the exact path at random times: inside a key segment the interpolated basis is
 // off its arc by at most (angle step)^2 / 8; across the key at t = 1, where the turn changes axis and
 // rate, by at most half the angle step. Bounds from the keys' own turn rates, 2x margin for rounding.
 TEST(CameraTable, FollowsThePathWithinTheInterpolationBound) {
-    Camera camera;
-    camera.keys = {CameraKey{0.0, {0, 2, -8}, {0, -1.5, 8}, {0, 1, 0}},
-                   CameraKey{1.0, {0.5, 2, -8}, {0.3, -1.5, 8}, {0.1, 1, 0}},
-                   CameraKey{2.5, {1, 3, -7}, {-0.4, -1, 8}, {0, 1, 0.2}}};
+    const Camera camera = threeKeyCamera();
     const CameraPath path(camera);
     const int steps = 1024;
     const double t0 = 0.25, t1 = 2.0;
