@@ -204,7 +204,7 @@ def measure_scene(clipblur, scene, args, out, log=print):
             return e
 
         reaching = None
-        for rung in rungs + ["auto"]:
+        for rung in rungs + (["auto"] if args.auto == "on" else []):
             if rung != "auto" and reaching is not None:
                 continue
             # The sweep ladders stop where the spacing would fall below what a job may ask for.
@@ -225,7 +225,7 @@ def measure_scene(clipblur, scene, args, out, log=print):
         result[method] = {"t": t, "ratio": t_peer / t if t else None,
                           "ratio_stochastic": t_stochastic / t if t else None, "reaching": reaching,
                           "best_error": min(rw["error"] for rw in ladder),
-                          "auto": next(rw for rw in ladder if rw["param"] == "auto")}
+                          "auto": next((rw for rw in ladder if rw["param"] == "auto"), None)}
 
     if args.threads_check == "on":
         checks = [(m, METHODS[m], result[m]["reaching"] or "auto") for m in args.methods]
@@ -281,10 +281,11 @@ def summarise(results, rows):
                 ok = "met" if m["ratio"] >= RATIO_GOAL else "not met"
                 t_cell, ratio_cell = f"{m['t']:.3f}", f"{m['ratio']:.3g} ({ok})"
                 stochastic_cell = f"{m['ratio_stochastic']:.3g}"
+            auto_cells = ("- | - | -" if a is None else f"{a['subframes_max_per_tile']} | {a['seconds']:.3f} | "
+                          f"{'<= ' if a['within_noise'] else ''}{a['error']:.4g}")
             lines.append(f"| {r['scene']} | {method} | {r['t_stochastic']:.3f} | {r['e256']:.4g}{rel} | "
                          f"{r['t_loop_e256']:.3f} | {r['peer']} | {t_cell} | "
-                         f"{ratio_cell} | {stochastic_cell} | {fmt(m['reaching'], '')} | {a['subframes_max_per_tile']} | {a['seconds']:.3f} | "
-                         f"{'<= ' if a['within_noise'] else ''}{a['error']:.4g} |")
+                         f"{ratio_cell} | {stochastic_cell} | {fmt(m['reaching'], '')} | {auto_cells} |")
     text = "\n".join(lines) + "\n"
 
     if any("stochastic_threads" in r for r in results):
@@ -327,6 +328,8 @@ def main():
     ap.add_argument("--methods", default="clipped,sweep",
                     help="clipped variants to ladder: clipped, sweep (re-clips and positions refined together), "
                          "sweep_spacing (auto re-clips, positions refined)")
+    ap.add_argument("--auto", choices=("on", "off"), default="on",
+                    help="also render each variant at its automatic settings (off where auto is known to be slow)")
     ap.add_argument("--threads", type=int, default=0, help="render threads of the main runs (0: all cores)")
     ap.add_argument("--threads-check", choices=("on", "off"), default="on",
                     help="also time the rung reaching e256 and stochastic at 1 and 2 threads")
