@@ -35,7 +35,7 @@ void sortUnique(std::vector<std::uint64_t>& v) {
 }
 
 // The clipper's cost per binned triangle before its pixels, in pixel pieces (setup, binning, the
-// sort by depth); and what one ray costs in pixel pieces. Fitted at 1280x720 (docs/performance.md,
+// sort by depth); and what one ray costs in pixel pieces. Fitted at 1280x720 (docs/history/performance-runs.md,
 // "Candidate rays where they pay"): the propeller's frame sets took 1.54 s with rays in every tile
 // and 0.71 s with none though rays cut its candidates from 4428 to 348, while the dense sphere's
 // (1.1M triangles, up to 34 per pixel) were no faster without them.
