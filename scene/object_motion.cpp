@@ -1,6 +1,8 @@
 #include "scene/object_motion.h"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 
 namespace clipblur {
 
@@ -76,15 +78,98 @@ bool keysConstantOver(const std::vector<Key>& keys, double t0, double t1, Same s
 
 }  // namespace
 
+bool deformsOver(const Object& object, double t0, double t1) {
+    return !keysConstantOver(object.deformation, t0, t1, [](const DeformationKey& a, const DeformationKey& b) {
+        return a.positions == b.positions;
+    });
+}
+
 bool isStatic(const Object& object, double t0, double t1) {
     const bool rigid = keysConstantOver(object.transform, t0, t1, [](const TransformKey& a, const TransformKey& b) {
         return a.translate == b.translate && a.scale == b.scale &&
                (a.rotate == b.rotate || a.rotate == -b.rotate);
     });
-    const bool undeformed = keysConstantOver(object.deformation, t0, t1, [](const DeformationKey& a, const DeformationKey& b) {
-        return a.positions == b.positions;
-    });
-    return rigid && undeformed;
+    return rigid && !deformsOver(object, t0, t1);
+}
+
+namespace {
+
+// The times at which motions are compared: t0, t1, every transform key inside, and three times inside each
+// gap between them. Inside a gap no object passes a key, so each moves along one arc (translation and
+// scale linear, rotation at a constant rate); two different arcs that agree at both ends and three inner
+// times would be a coincidence that real keys do not make.
+std::vector<double> comparisonTimes(const Scene& scene, double t0, double t1) {
+    std::vector<double> keys{t0, t1};
+    for (const Object& object : scene.objects)
+        for (const TransformKey& key : object.transform)
+            if (key.time > t0 && key.time < t1) keys.push_back(key.time);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<double> times;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        times.push_back(keys[i]);
+        if (i + 1 < keys.size())
+            for (int j = 1; j <= 3; ++j) times.push_back(keys[i] + (keys[i + 1] - keys[i]) * j / 4.0);
+    }
+    return times;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> motionGroups(const Scene& scene, double t0, double t1) {
+    // An affine map is fixed by four points that are not coplanar: a corner of the scene's box and one
+    // step along each axis, a step as long as the box, so that differences are measured at its scale.
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const Object& object : scene.objects) {
+        const RigidTransform start = evalTransform(object.transform, t0);
+        for (const glm::dvec3& p : object.mesh.positions) {
+            lo = glm::min(lo, start.apply(p));
+            hi = glm::max(hi, start.apply(p));
+        }
+    }
+    const glm::dvec3 size = hi - lo;
+    const double extent = std::max({1.0, size.x, size.y, size.z});
+    const glm::dvec3 origin = glm::all(glm::lessThanEqual(lo, hi)) ? lo : glm::dvec3(0.0);
+    const std::array<glm::dvec3, 4> points{origin, origin + glm::dvec3(extent, 0, 0), origin + glm::dvec3(0, extent, 0),
+                                           origin + glm::dvec3(0, 0, extent)};
+    // Where each object's motion carries the points: with p = T(t0)^-1 q fixed, T(t) p for every time.
+    const std::vector<double> times = comparisonTimes(scene, t0, t1);
+    const auto track = [&](const Object& object) {
+        const RigidTransform start = evalTransform(object.transform, t0);
+        std::vector<glm::dvec3> out;
+        for (const glm::dvec3& q : points) {
+            const glm::dvec3 p = glm::inverse(start.rotate) * (q - start.translate) / start.scale;
+            for (const double t : times) out.push_back(evalTransform(object.transform, t).apply(p));
+        }
+        return out;
+    };
+    // Rounding in the slerp and the inverse is far below this; any real difference in motion is far above.
+    const double tolerance = 1e-9 * extent;
+    std::vector<std::uint32_t> group(scene.objects.size());
+    std::vector<std::uint32_t> leaders;
+    std::vector<std::vector<glm::dvec3>> tracks;
+    for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        group[o] = o;
+        // A deforming object, or one squashed flat at t0 (no inverse), keeps a group of its own.
+        const glm::dvec3 scale = evalTransform(object.transform, t0).scale;
+        if (deformsOver(object, t0, t1) || scale.x == 0.0 || scale.y == 0.0 || scale.z == 0.0) continue;
+        std::vector<glm::dvec3> mine = track(object);
+        const auto same = [&](const std::vector<glm::dvec3>& other) {
+            for (std::size_t i = 0; i < mine.size(); ++i)
+                if (glm::length(mine[i] - other[i]) > tolerance) return false;
+            return true;
+        };
+        std::size_t k = 0;
+        while (k < tracks.size() && !same(tracks[k])) ++k;
+        if (k < tracks.size()) {
+            group[o] = leaders[k];
+        } else {
+            leaders.push_back(o);
+            tracks.push_back(std::move(mine));
+        }
+    }
+    return group;
 }
 
 }  // namespace clipblur

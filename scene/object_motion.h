@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
@@ -25,7 +28,16 @@ glm::dvec3 evalVertex(const Object& object, std::uint32_t index, double t);
 // World positions of every vertex of `object` at time t (one transform evaluation for the whole mesh).
 void evalVertices(const Object& object, double t, std::vector<glm::dvec3>& out);
 
+// True when the object's deformation keys differ inside [t0, t1].
+bool deformsOver(const Object& object, double t0, double t1);
+
 // True when the object has no motion inside [t0, t1] (no keys differ there).
 bool isStatic(const Object& object, double t0, double t1);
+
+// Objects grouped by how they move over [t0, t1], per object the index of its group's first object. Two
+// objects share a group when neither deforms there and their world motions T(t) T(t0)^-1 agree at every
+// time of [t0, t1]: nothing of one then moves relative to the other, whatever the camera does, so how a
+// surface was cut into objects cannot change what the renderer counts as relative motion.
+std::vector<std::uint32_t> motionGroups(const Scene& scene, double t0, double t1);
 
 }  // namespace clipblur

@@ -358,7 +358,10 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             still_scene || (tile_plan.max_sweep_pixels == 0.0 && subframes == 0 && !settings.shadows);
         const int n = still_tile ? 0 : tile_plan.count;
         SweepInterval sweep;
-        if (sweeping && n > 0) sweep = sweepInterval(tile, tile_plan, n, film_w, film_h);
+        if (sweeping && n > 0) {
+            sweep = sweepInterval(tile, tile_plan, n, film_w, film_h);
+            sweep.groups = plan.groups;
+        }
         const Tile reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
         if (!window.overlaps(reach.x0, reach.y0, reach.x1, reach.y1)) {
             progress();

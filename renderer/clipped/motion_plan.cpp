@@ -41,21 +41,19 @@ bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<
     return true;
 }
 
-// How far different objects move relative to each other where they can meet in `tile` (eq. 24's pixel
-// rule, for what one object hides of another): for every two fragment triangles of different objects
-// whose swept boxes overlap within the tile, the largest difference of their open-to-close displacements
-// over that overlap. Each displacement is an affine map (FragmentMotion::displacement), so the difference
-// is affine and peaks at a corner of the overlap. Surfaces moving together (a propeller's co-turning
-// blades) give 0 wherever they are, where the spread of their centroids' displacements counted the turn
-// across the blades; surfaces that cross in mid-segment count though they are apart at both ends, where
-// grouping by what was near the tile at the segment's ends missed them. The pairs come from a sweep along
-// x over the boxes sorted by their left edge; a tile with one object has none.
-template <class ObjectOf>
+// How far surfaces that move differently in the world move relative to each other where they can meet in
+// `tile` (eq. 24's pixel rule, for what one hides of another): for every two fragment triangles of
+// different motion groups (`group`) whose swept boxes overlap within the tile, the largest difference of
+// their open-to-close displacements over that overlap. Each displacement is an affine map
+// (FragmentMotion::displacement), so the difference is affine and peaks at a corner of the overlap.
+// Surfaces that cross in mid-segment count though they are apart at both ends. The pairs come from a
+// sweep along x over the boxes sorted by their left edge; a tile with one group has none.
+template <class GroupOf>
 double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
-                      const RasterBox& tile, ObjectOf object) {
+                      const RasterBox& tile, GroupOf group) {
     struct Item {
         RasterBox box;  // swept box within the tile
-        std::uint32_t object;
+        std::uint32_t group;
         const FragmentMotion* motion;
     };
     thread_local std::vector<Item> items;
@@ -67,8 +65,8 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
         if (fm.crosses_near) continue;
         const RasterBox box{glm::max(fm.swept.lo, tile.lo), glm::min(fm.swept.hi, tile.hi)};
         if (box.empty()) continue;
-        items.push_back({box, object(ref), &fm});
-        several = several || items.back().object != items.front().object;
+        items.push_back({box, group(ref), &fm});
+        several = several || items.back().group != items.front().group;
     }
     if (!several) return 0.0;
     std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.box.lo.x < b.box.lo.x; });
@@ -77,7 +75,7 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
     for (const Item& item : items) {
         std::erase_if(active, [&](const Item* a) { return a->box.hi.x < item.box.lo.x; });
         for (const Item* other : active) {
-            if (other->object == item.object) continue;
+            if (other->group == item.group) continue;
             const RasterBox meet{glm::max(item.box.lo, other->box.lo), glm::min(item.box.hi, other->box.hi)};
             if (meet.empty()) continue;
             for (const glm::dvec2& corner :
@@ -165,6 +163,10 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
     }
 
     const auto object = [&](const FragmentRef& ref) { return (*layers.triangles[ref.layer])[ref.index].object; };
+    // Relative motion is between surfaces that move differently in the world, not between objects: a
+    // surface cut into many objects that move together has none, as one object has none with itself.
+    plan.groups = motionGroups(scene, t0, t1);
+    const auto motionGroup = [&](const FragmentRef& ref) { return plan.groups[object(ref)]; };
     tbb::parallel_for(0, count, [&](int index) {
         auto& refs = plan.refs[static_cast<std::size_t>(index)];
         if (sweep && !backdrop.empty())
@@ -213,7 +215,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 unstretched = std::max(unstretched, fm.unstretched_error);
             }
             const Tile t = grid.tile(index);
-            const double relative = relativeMotion(refs, motion, RasterBox{{t.x0, t.y0}, {t.x1, t.y1}}, object);
+            const double relative = relativeMotion(refs, motion, RasterBox{{t.x0, t.y0}, {t.x1, t.y1}}, motionGroup);
             p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), unstretched / kChordTolerance}),
                                     max_subframes,
                                     &p.capped);

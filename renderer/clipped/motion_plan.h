@@ -17,6 +17,7 @@ struct MotionPlan {
     // moving one that can reach the tile stays nearer than all of them for the whole segment. Elsewhere the
     // tile re-clips everything together.
     std::vector<char> backdrop;
+    std::vector<std::uint32_t> groups;  // per object, its motion group over the segment (motionGroups)
     long long backdrop_tiles = 0;
     long long capped_tiles = 0;
     long long measured = 0;     // fragment triangles whose path was sampled

@@ -128,13 +128,14 @@ void addTextured(const ConvexPolygon& piece, const glm::dvec3& colour,
     textured.push_back({piece, colour});
 }
 
-// Sweep: a pixel whose fragments are all of one object, stretch alike and together fill an axis-aligned rectangle
+// Sweep: a pixel whose fragments are all of one motion group (objects moving as one, MotionPlan::groups),
+// stretch alike and together fill an axis-aligned rectangle
 // (mostly the whole pixel, cut only where the two frames' triangulations of one surface cross it) is
 // swept as that rectangle, with the largest fragment's path and colour; the other fragments add only
 // their colour differences (none on a flat-shaded surface). The rectangle takes the separable fast path,
-// where each cut piece took the general one at several times the cost. Within a pixel one object's
-// surface moves alike to well under a pixel, so one path serves the pixel; the AOVs take the fragments'
-// area-weighted means. `swept` holds the pixel's entries from `begin` on.
+// where each cut piece took the general one at several times the cost. Within a pixel surfaces that move
+// as one in the world move alike on screen to well under a pixel, so one path serves the pixel; the AOVs
+// take the fragments' area-weighted means. `swept` holds the pixel's entries from `begin` on.
 void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector<SweptPolygon>& staging) {
     std::size_t count = 0, base = begin;
     double area = 0.0, largest = -1.0;
@@ -266,8 +267,8 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
     for (int y = region.y0; y < region.y1; ++y) {
         for (int x = region.x0; x < region.x1; ++x) {
             const std::size_t pixel_begin = scratch.swept.size();
-            bool one_surface = sweep != nullptr;  // every fragment swept, all of one object
-            std::uint32_t pixel_object = std::numeric_limits<std::uint32_t>::max();
+            bool one_surface = sweep != nullptr;  // every fragment swept, all of one motion group
+            std::uint32_t pixel_group = std::numeric_limits<std::uint32_t>::max();
             for (const Fragment& fragment : scratch.fragments.pixel(x, y)) {
                 ++stats.fragments;
                 if (fragment.source_count > 1) ++stats.mixed;
@@ -351,9 +352,9 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     one_surface = false;
                 }
                 for (int k = 0; k < fragment.source_count; ++k) {
-                    const std::uint32_t object = scratch.sources[fragment.sources[k].source].object;
-                    if (pixel_object == std::numeric_limits<std::uint32_t>::max()) pixel_object = object;
-                    one_surface = one_surface && object == pixel_object;
+                    const std::uint32_t group = sweep->groups[scratch.sources[fragment.sources[k].source].object];
+                    if (pixel_group == std::numeric_limits<std::uint32_t>::max()) pixel_group = group;
+                    one_surface = one_surface && group == pixel_group;
                 }
                 // Swept after the tile's last fragment: only then is the box they reach known.
                 scratch.swept.push_back({polygon, shift, positions, colour, motion, sampled ? 1.0 / inv_depth : 0.0, true});

@@ -78,6 +78,8 @@ struct SweepInterval {
     Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
     // A turning camera's turns over the interval, shared by its tiles; null when it does not turn.
     const IntervalTurns* turns = nullptr;
+    // Per object, its motion group (MotionPlan::groups): a pixel's fragments of one group move alike.
+    std::span<const std::uint32_t> groups;
 };
 
 // Sweep: one polygon to sweep and what it adds per px^2 of its footprint. Texture pieces add only their
