@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include "scene/camera.h"
 #include "scene/object_motion.h"
@@ -124,19 +123,23 @@ std::uint64_t countDegenerateTriangles(const Mesh& mesh) {
 }
 
 bool isClosedManifold(const Mesh& mesh) {
-    // Directed edge (a -> b) counts; closed and consistently wound means each directed edge occurs
-    // once and its reverse occurs once.
-    std::unordered_map<std::uint64_t, int> directed;
-    directed.reserve(mesh.triangles.size() * 3);
+    // Closed and consistently wound means each directed edge (a -> b) occurs once and its reverse occurs
+    // once: the sorted directed edges have no repeats and equal the sorted reversed edges. Sorting two flat
+    // arrays, not a hash map of every edge, keeps this linear-time check cheap on meshes of millions of
+    // triangles (a node allocation per edge took a minute for 4M triangles under ASan).
+    std::vector<std::uint64_t> edges, reversed;
+    edges.reserve(mesh.triangles.size() * 3);
+    reversed.reserve(mesh.triangles.size() * 3);
     for (const auto& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k)
-            ++directed[(std::uint64_t{t[k]} << 32) | t[(k + 1) % 3]];
-    for (const auto& [edge, count] : directed) {
-        const std::uint64_t reverse = (edge << 32) | (edge >> 32);
-        const auto it = directed.find(reverse);
-        if (count != 1 || it == directed.end() || it->second != 1) return false;
-    }
-    return !mesh.triangles.empty();
+        for (int k = 0; k < 3; ++k) {
+            const std::uint64_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+            edges.push_back((a << 32) | b);
+            reversed.push_back((b << 32) | a);
+        }
+    std::sort(edges.begin(), edges.end());
+    if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+    std::sort(reversed.begin(), reversed.end());
+    return !mesh.triangles.empty() && edges == reversed;
 }
 
 std::vector<std::string> validateScene(const Scene& scene, const SceneLocations& locations) {
