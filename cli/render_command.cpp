@@ -12,6 +12,8 @@
 #include <tbb/global_control.h>
 
 #include "cli/commands.h"
+#include "io/comp_channels.h"
+#include "io/exr_frame_header.h"
 #include "io/image_writer.h"
 #include "io/job_loader.h"
 #include "io/reference_error.h"
@@ -178,6 +180,8 @@ Action addRenderCommand(CLI::App& app) {
             if (style != ProgressStyle::None) callbacks.progress = [&printer](long long d, long long t) { printer(d, t); };
             RenderResult result = renderFrame(job, frame, callbacks);
             if (g_cancel.load()) throw Error(ExitCode::Interrupted, "interrupted; frame " + std::to_string(frame) + " not written");
+            toForwardVectors(result.image, job.shutter.close - job.shutter.open);
+            if (job.output.background == BackgroundMode::Bake) bakeBackground(result.image, job.scene.film.background);
 
             ImageMetadata meta;
             meta.method = methodName(job.render.method);
@@ -188,6 +192,7 @@ Action addRenderCommand(CLI::App& app) {
                 meta.subframes = static_cast<int>(it->second);
             meta.seed = job.render.seed;
             meta.config_hash = job.config_hash;
+            meta.frame = frameHeader(job, frame);
             if (const auto it = result.stats.seconds.find("total"); it != result.stats.seconds.end())
                 meta.render_seconds = it->second;
             if (shard) {
@@ -202,12 +207,12 @@ Action addRenderCommand(CLI::App& app) {
                 std::cout << "frame " << frame << ": against the reference RMSE " << e.rmse << ", max error " << e.max_abs
                           << "\n";
             }
-            writeExr(image_path, result.image, meta, job.output.half);
+            writeExr(image_path, result.image, meta, ExrFormat{job.output.half, job.output.compression});
             std::cout << "frame " << frame << ": wrote " << image_path;
             // A shard's preview would be mostly black; previews belong to whole frames.
             if (job.output.png_preview && !shard) {
                 const std::string png = pngPathFor(image_path);
-                writePngPreview(png, result.image);
+                writePngPreview(png, result.image, job.scene.film.background);
                 std::cout << " and " << png;
             }
             const std::string stats_path =

@@ -33,49 +33,97 @@ void writeWith(const std::filesystem::path& file, const OIIO::ImageSpec& spec, c
         throw Error(ExitCode::Output, "cannot write " + file.string() + ": " + out->geterror());
 }
 
+// Colour-like channels may be half; every other channel holds measurements (depth, motion, IDs)
+// that half would quantise, so it stays float.
+bool mayBeHalf(const std::string& name) {
+    return name == "R" || name == "G" || name == "B" || name == "A" || name == "coverage";
+}
+
+// Standard OpenEXR attributes of a rendered frame (written through OpenImageIO's names).
+void addFrameHeader(OIIO::ImageSpec& spec, const FrameHeader& h) {
+    const int fps[2] = {h.fps_numerator, h.fps_denominator};
+    spec.attribute("framesPerSecond", OIIO::TypeRational, fps);
+    spec.attribute("ExposureTime", static_cast<float>(h.exposure_seconds));
+    spec.attribute("worldToCamera", OIIO::TypeMatrix44, h.world_to_camera.data());
+    spec.attribute("worldToNDC", OIIO::TypeMatrix44, h.world_to_ndc.data());
+    spec.attribute("clipblur:frame", h.frame);
+    spec.attribute("clipblur:shutterOpen", static_cast<float>(h.shutter_open));
+    spec.attribute("clipblur:shutterClose", static_cast<float>(h.shutter_close));
+}
+
+void addProvenance(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {
+    spec.attribute("Software", std::string("clipblur ") + kVersion);
+    spec.attribute("clipblur:version", kVersion);
+    spec.attribute("clipblur:git", kGitHash);
+    spec.attribute("clipblur:method", metadata.method);
+    if (metadata.samples >= 0) spec.attribute("clipblur:samples", metadata.samples);
+    if (metadata.subframes >= 0) spec.attribute("clipblur:subframes", metadata.subframes);
+    // 64-bit seeds do not fit an int attribute; a decimal string keeps them exact.
+    spec.attribute("clipblur:seed", std::to_string(metadata.seed));
+    spec.attribute(kConfigHashKey, metadata.config_hash);
+    spec.attribute("clipblur:renderSeconds", static_cast<float>(metadata.render_seconds));
+    if (metadata.tile_count >= 1) {
+        spec.attribute(kTileIndexKey, metadata.tile_index);
+        spec.attribute(kTileCountKey, metadata.tile_count);
+    }
+}
+
+OIIO::ImageSpec exrSpec(const Image& image, const ExrFormat& format) {
+    const int nc = static_cast<int>(image.channels.size());
+    OIIO::ImageSpec spec(image.data_width, image.data_height, nc, OIIO::TypeDesc::FLOAT);
+    spec.x = image.x0;
+    spec.y = image.y0;
+    spec.full_x = 0;
+    spec.full_y = 0;
+    spec.full_width = image.width;
+    spec.full_height = image.height;
+    spec.channelnames.clear();
+    spec.channelformats.clear();
+    spec.alpha_channel = -1;
+    spec.z_channel = -1;
+    for (int c = 0; c < nc; ++c) {
+        const std::string& name = image.channels[static_cast<std::size_t>(c)].name;
+        spec.channelnames.push_back(name);
+        spec.channelformats.push_back(format.half && mayBeHalf(name) ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+        if (name == "A") spec.alpha_channel = c;
+        if (name == "Z") spec.z_channel = c;
+    }
+    // The format of the colour channels, which readers report as the image's.
+    spec.format = format.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+    spec.attribute("compression", compressionName(format.compression));
+    // Linear Rec.709 / sRGB primaries with a D65 white point (ITU-R BT.709: red, green, blue, white xy).
+    const float chromaticities[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities);
+    return spec;
+}
+
 }  // namespace
 
-void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata, bool half) {
+const char* compressionName(ExrCompression compression) {
+    switch (compression) {
+        case ExrCompression::Zip: return "zip";
+        case ExrCompression::Piz: return "piz";
+        case ExrCompression::Dwaa: return "dwaa";
+        case ExrCompression::None: return "none";
+    }
+    return "zip";
+}
+
+void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata,
+              const ExrFormat& format) {
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         // Checked inside the atomic write so a bad image can never replace a good file.
         checkImage(image);
-        const int nc = static_cast<int>(image.channels.size());
-        OIIO::ImageSpec spec(image.data_width, image.data_height, nc, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-        spec.x = image.x0;
-        spec.y = image.y0;
-        spec.full_x = 0;
-        spec.full_y = 0;
-        spec.full_width = image.width;
-        spec.full_height = image.height;
-        spec.channelnames.clear();
-        spec.alpha_channel = -1;
-        spec.z_channel = -1;
-        for (int c = 0; c < nc; ++c) {
-            const std::string& name = image.channels[static_cast<std::size_t>(c)].name;
-            spec.channelnames.push_back(name);
-            if (name == "A") spec.alpha_channel = c;
-            if (name == "Z") spec.z_channel = c;
-        }
-        spec.attribute("compression", "zip");
-        spec.attribute("clipblur:version", kVersion);
-        spec.attribute("clipblur:git", kGitHash);
-        spec.attribute("clipblur:method", metadata.method);
-        if (metadata.samples >= 0) spec.attribute("clipblur:samples", metadata.samples);
-        if (metadata.subframes >= 0) spec.attribute("clipblur:subframes", metadata.subframes);
-        // 64-bit seeds do not fit an int attribute; a decimal string keeps them exact.
-        spec.attribute("clipblur:seed", std::to_string(metadata.seed));
-        spec.attribute(kConfigHashKey, metadata.config_hash);
-        spec.attribute("clipblur:renderSeconds", static_cast<float>(metadata.render_seconds));
-        if (metadata.tile_count >= 1) {
-            spec.attribute(kTileIndexKey, metadata.tile_index);
-            spec.attribute(kTileCountKey, metadata.tile_count);
-        }
+        OIIO::ImageSpec spec = exrSpec(image, format);
+        addProvenance(spec, metadata);
+        if (metadata.frame) addFrameHeader(spec, *metadata.frame);
 
+        const std::size_t nc = image.channels.size();
         const std::size_t n = static_cast<std::size_t>(image.data_width) * image.data_height;
-        std::vector<float> interleaved(n * static_cast<std::size_t>(nc));
-        for (int c = 0; c < nc; ++c) {
-            const auto& values = image.channels[static_cast<std::size_t>(c)].values;
-            for (std::size_t i = 0; i < n; ++i) interleaved[i * nc + static_cast<std::size_t>(c)] = values[i];
+        std::vector<float> interleaved(n * nc);
+        for (std::size_t c = 0; c < nc; ++c) {
+            const auto& values = image.channels[c].values;
+            for (std::size_t i = 0; i < n; ++i) interleaved[i * nc + c] = values[i];
         }
         writeWith(temporary, spec, interleaved.data(), OIIO::TypeDesc::FLOAT);
     });
@@ -88,12 +136,14 @@ std::uint8_t encodeSrgb8(float linear) {
     return static_cast<std::uint8_t>(std::lround(e * 255.0));
 }
 
-void writePngPreview(const std::filesystem::path& path, const Image& image) {
+void writePngPreview(const std::filesystem::path& path, const Image& image, const glm::dvec3& background) {
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         checkImage(image);
         const Image::Channel* rgb[3] = {image.find("R"), image.find("G"), image.find("B")};
+        const Image::Channel* alpha = image.find("A");
         for (const auto* c : rgb)
             if (!c) throw Error(ExitCode::Output, "PNG preview needs R, G and B channels");
+        if (!alpha) throw Error(ExitCode::Output, "PNG preview needs an A channel");
         std::vector<std::uint8_t> pixels(static_cast<std::size_t>(image.width) * image.height * 3, 0);
         for (int y = 0; y < image.data_height; ++y) {
             const int fy = y + image.y0;
@@ -103,7 +153,9 @@ void writePngPreview(const std::filesystem::path& path, const Image& image) {
                 if (fx < 0 || fx >= image.width) continue;
                 const std::size_t src = static_cast<std::size_t>(y) * image.data_width + x;
                 const std::size_t dst = (static_cast<std::size_t>(fy) * image.width + fx) * 3;
-                for (int c = 0; c < 3; ++c) pixels[dst + c] = encodeSrgb8(rgb[c]->values[src]);
+                const double uncovered = 1.0 - static_cast<double>(alpha->values[src]);
+                for (int c = 0; c < 3; ++c)
+                    pixels[dst + c] = encodeSrgb8(static_cast<float>(rgb[c]->values[src] + uncovered * background[c]));
             }
         }
         OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);

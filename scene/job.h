@@ -54,9 +54,16 @@ struct RenderSettings {
     std::optional<DataWindow> window;
 };
 
+// Separate: the EXR holds premultiplied colour of the surfaces only (OpenEXR convention; comp an
+// "over" onto any plate). Bake: the film background is composited under it and alpha is 1.
+enum class BackgroundMode { Separate, Bake };
+enum class ExrCompression { Zip, Piz, Dwaa, None };
+
 struct OutputSettings {
     std::string path = "render.exr";
-    bool half = true;
+    bool half = true;          // R, G, B, A and coverage only; Z and motion are always float
+    ExrCompression compression = ExrCompression::Zip;
+    BackgroundMode background = BackgroundMode::Separate;
     bool png_preview = false;
     bool aov_depth = false;
     bool aov_coverage = false;

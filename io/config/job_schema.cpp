@@ -312,6 +312,10 @@ void readOutput(MapReader map, OutputSettings& out) {
     }
     out.half = map.boolean("half", out.half);
     out.png_preview = map.boolean("png_preview", out.png_preview);
+    if (const ConfigNode* c = map.optional("compression"))
+        out.compression = static_cast<ExrCompression>(asChoice(*c, "output.compression", {"zip", "piz", "dwaa", "none"}));
+    if (const ConfigNode* b = map.optional("background"))
+        out.background = static_cast<BackgroundMode>(asChoice(*b, "output.background", {"separate", "bake"}));
     if (const ConfigNode* a = map.optional("aovs")) {
         const auto& items = asList(*a, "output.aovs");
         for (std::size_t i = 0; i < items.size(); ++i) {

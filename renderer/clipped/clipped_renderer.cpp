@@ -30,24 +30,23 @@ namespace clipblur {
 
 namespace {
 
-// Writes one pixel's averaged sums (colour, covered area, depth and motion sums) over the background.
+// Writes one pixel's averaged sums (colour, covered area, depth and motion sums). The colour is
+// premultiplied: what the surfaces contribute only, so compositors can "over" it onto any background.
 struct ImageWriter {
     Image& image;
-    glm::dvec3 background;
     Image::Channel* depth;
     Image::Channel* coverage;
     Image::Channel* mx;
     Image::Channel* my;
 
-    ImageWriter(Image& img, const glm::dvec3& bg)
-        : image(img), background(bg), depth(img.find("Z")), coverage(img.find("coverage")), mx(img.find("motion.x")),
+    explicit ImageWriter(Image& img)
+        : image(img), depth(img.find("Z")), coverage(img.find("coverage")), mx(img.find("motion.x")),
           my(img.find("motion.y")) {}
 
     // z: the pixel's depth AOV (meanDepth).
     void write(std::size_t pixel, const glm::dvec3& colour, double covered, float z, const glm::dvec2& motion) {
         const double c = std::clamp(covered, 0.0, 1.0);
-        const glm::dvec3 rgb = colour + (1.0 - c) * background;
-        for (int k = 0; k < 3; ++k) image.channels[static_cast<std::size_t>(k)].values[pixel] = static_cast<float>(rgb[k]);
+        for (int k = 0; k < 3; ++k) image.channels[static_cast<std::size_t>(k)].values[pixel] = static_cast<float>(colour[k]);
         image.channels[3].values[pixel] = static_cast<float>(c);
         if (coverage) coverage->values[pixel] = static_cast<float>(c);
         if (depth) depth->values[pixel] = z;
@@ -126,7 +125,7 @@ void reportAudit(RenderStats& stats, const AuditStats& audit) {
                                           " invariant violations; " + audit.first_violation);
 }
 
-// Per-pixel sums over the render window (window-local, row-major), before the background is added.
+// Per-pixel sums over the render window (window-local, row-major).
 struct WindowSums {
     std::vector<glm::dvec3> colour;
     std::vector<double> covered;
@@ -527,7 +526,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         midShutterDepth(job, whole ? *whole : embree, adjacency, shader, t0, t1, callbacks, mid_stats);
 
     result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(job.output));
-    ImageWriter writer(result.image, scene.film.background);
+    ImageWriter writer(result.image);
     for (int y = ctx.window.y0; y < ctx.window.y1(); ++y) {
         for (int x = ctx.window.x0; x < ctx.window.x1(); ++x) {
             const std::size_t i = static_cast<std::size_t>(y - ctx.window.y0) * ctx.window.width + (x - ctx.window.x0);
@@ -627,7 +626,7 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     RenderResult result;
     const DataWindow window = renderWindow(job);
     result.image = Image::make(scene.film.width, scene.film.height, window, outputChannels(job.output));
-    ImageWriter writer(result.image, scene.film.background);
+    ImageWriter writer(result.image);
     for (int y = window.y0; y < window.y1(); ++y) {
         for (int x = window.x0; x < window.x1(); ++x) {
             const std::size_t p = static_cast<std::size_t>(y) * scene.film.width + x;

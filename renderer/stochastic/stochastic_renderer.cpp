@@ -121,10 +121,8 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                                 depth_covered += 1.0;
                             }
                         }
-                        if (!hit.hit) {
-                            colour += scene.film.background;
-                            continue;
-                        }
+                        // Premultiplied colour: a miss adds nothing (the background is the compositor's).
+                        if (!hit.hit) continue;
                         const SurfacePoint point{hit.object, hit.triangle, hit.u, hit.v, t};
                         // The surface as Embree hit it: no motion evaluated again per sample.
                         const double normal_length = glm::length(hit.normal);

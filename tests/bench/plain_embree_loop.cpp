@@ -172,10 +172,8 @@ int main(int argc, char** argv) {
                               float(embree.embreeTime(t)), std::numeric_limits<float>::infinity(), 0xffffffffu, 0, 0};
                     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                     rtcIntersect1(embree.get(), &context, &rh);
-                    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-                        sum += scene.film.background;
-                        continue;
-                    }
+                    // Premultiplied like clipblur's own output: a miss adds no colour.
+                    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
                     sum += shadeHit(scene, embree, rh);
                     alpha += 1.0;
                 }
@@ -185,7 +183,7 @@ int main(int argc, char** argv) {
             }
         });
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        writeExr(out_path, image, {"plain_embree_loop", spp, -1, seed, "", seconds}, false);
+        writeExr(out_path, image, {"plain_embree_loop", spp, -1, seed, "", seconds}, ExrFormat{false, ExrCompression::Zip});
         std::cout << "seconds " << seconds << " samples " << spp << "\n";
     } catch (const Error& e) {
         std::cerr << "clipblur_plain_loop: " << e.what() << "\n";

@@ -1,5 +1,9 @@
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
@@ -69,11 +73,16 @@ TEST(ImageWriter, ExrRoundTripKeepsChannelsWindowsAndMetadata) {
     const Image image = windowedImage();
     for (bool half : {true, false}) {
         const fs::path file = dir / (half ? "half.exr" : "float.exr");
-        writeExr(file, image, metadata(), half);
+        writeExr(file, image, metadata(), ExrFormat{half, ExrCompression::Zip});
         auto in = OIIO::ImageInput::open(file.string());
         ASSERT_TRUE(in) << OIIO::geterror();
         const OIIO::ImageSpec& spec = in->spec();
-        EXPECT_EQ(spec.format, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+        // Half applies to colour and coverage only; depth and motion stay float.
+        for (const char* name : {"R", "G", "B", "A", "coverage"})
+            EXPECT_EQ(spec.channelformat(channelIndex(spec, name)), half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
+                << name;
+        for (const char* name : {"Z", "motion.x", "motion.y"})
+            EXPECT_EQ(spec.channelformat(channelIndex(spec, name)), OIIO::TypeDesc::FLOAT) << name;
         EXPECT_EQ(spec.x, 3);
         EXPECT_EQ(spec.y, 2);
         EXPECT_EQ(spec.width, 5);
@@ -124,7 +133,7 @@ TEST(ImageWriter, PngPreviewCoversTheDisplayWindow) {
     image.find("G")->values[0] = 0.18f;
     image.find("B")->values[0] = 1.0f;
     const fs::path file = dir / "preview.png";
-    writePngPreview(file, image);
+    writePngPreview(file, image, glm::dvec3(0.0));
     auto in = OIIO::ImageInput::open(file.string());
     ASSERT_TRUE(in) << OIIO::geterror();
     const OIIO::ImageSpec spec = in->spec();
@@ -143,13 +152,13 @@ TEST(ImageWriter, PngPreviewCoversTheDisplayWindow) {
 TEST(ImageWriter, FailedWriteLeavesThePreviousFile) {
     const fs::path dir = freshDir("clipblur_exr_fail_test");
     const fs::path file = dir / "frame.exr";
-    writeExr(file, windowedImage(), metadata(), true);
+    writeExr(file, windowedImage(), metadata(), ExrFormat{});
     const auto before = fs::file_size(file);
 
     Image broken = windowedImage();
     broken.find("G")->values.resize(3);  // inconsistent with the data window: the writer must refuse
     try {
-        writeExr(file, broken, metadata(), false);
+        writeExr(file, broken, metadata(), ExrFormat{false, ExrCompression::Zip});
         FAIL() << "expected an error";
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ExitCode::Output);
@@ -157,12 +166,109 @@ TEST(ImageWriter, FailedWriteLeavesThePreviousFile) {
     EXPECT_EQ(fs::file_size(file), before);
     auto in = OIIO::ImageInput::open(file.string());
     ASSERT_TRUE(in);
-    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::HALF);  // still the first, half-float file
+    EXPECT_EQ(in->spec().channelformat(channelIndex(in->spec(), "R")), OIIO::TypeDesc::HALF);  // still the first file
     EXPECT_TRUE(noTemporaries(dir));
 
     // A target whose folder cannot be created (a regular file is in the way) fails the same way.
     std::ofstream(dir / "blocker") << "x";
-    EXPECT_THROW(writeExr(dir / "blocker" / "frame.exr", windowedImage(), metadata(), true), Error);
+    EXPECT_THROW(writeExr(dir / "blocker" / "frame.exr", windowedImage(), metadata(), ExrFormat{}), Error);
+}
+
+namespace {
+
+// Output of a shell command (stdout), for OpenEXR's own tools.
+std::string capture(const std::string& command) {
+    std::string text;
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+    if (!pipe) return text;
+    char buffer[4096];
+    while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe.get())) text.append(buffer, n);
+    return text;
+}
+
+FrameHeader sampleFrameHeader() {
+    FrameHeader h;
+    h.frame = 7;
+    h.fps_numerator = 24000;
+    h.fps_denominator = 1001;
+    h.shutter_open = 0.25;
+    h.shutter_close = 0.75;
+    h.exposure_seconds = 0.5 / 24.0;
+    for (std::size_t i = 0; i < 16; ++i) {
+        h.world_to_camera[i] = static_cast<float>(i) + 0.5f;
+        h.world_to_ndc[i] = static_cast<float>(0 - static_cast<int>(i));  // no -0 (exrheader prints it)
+    }
+    return h;
+}
+
+}  // namespace
+
+TEST(ImageWriter, HeaderCarriesCompressionChromaticitiesAndTheFrame) {
+    const fs::path dir = freshDir("clipblur_exr_header_test");
+    ImageMetadata meta = metadata();
+    meta.frame = sampleFrameHeader();
+    for (const ExrCompression compression :
+         {ExrCompression::Zip, ExrCompression::Piz, ExrCompression::Dwaa, ExrCompression::None}) {
+        const std::string name = compressionName(compression);
+        const fs::path file = dir / (name + ".exr");
+        writeExr(file, windowedImage(), meta, ExrFormat{true, compression});
+        auto in = OIIO::ImageInput::open(file.string());
+        ASSERT_TRUE(in) << OIIO::geterror();
+        const OIIO::ImageSpec& spec = in->spec();
+        EXPECT_EQ(spec.get_string_attribute("compression").substr(0, name.size()), name);
+        const OIIO::ParamValue* chroma = spec.find_attribute("chromaticities");
+        ASSERT_TRUE(chroma) << name;
+        ASSERT_EQ(chroma->type(), OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
+        const float* xy = static_cast<const float*>(chroma->data());
+        // ITU-R BT.709 primaries and the D65 white point.
+        const float rec709[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+        for (int i = 0; i < 8; ++i) EXPECT_FLOAT_EQ(xy[i], rec709[i]) << i;
+        const OIIO::ParamValue* fps = spec.find_attribute("framesPerSecond");
+        ASSERT_TRUE(fps);
+        EXPECT_EQ(fps->type(), OIIO::TypeRational);
+        EXPECT_EQ(static_cast<const int*>(fps->data())[0], 24000);
+        EXPECT_EQ(static_cast<const int*>(fps->data())[1], 1001);
+        for (const char* key : {"worldToCamera", "worldToNDC"}) {
+            const OIIO::ParamValue* m = spec.find_attribute(key);
+            ASSERT_TRUE(m) << key;
+            ASSERT_EQ(m->type(), OIIO::TypeMatrix44) << key;
+            const float* v = static_cast<const float*>(m->data());
+            const ExrMatrix& want = std::string(key) == "worldToNDC" ? meta.frame->world_to_ndc : meta.frame->world_to_camera;
+            for (std::size_t i = 0; i < 16; ++i) EXPECT_EQ(v[i], want[i]) << key << " " << i;
+        }
+        EXPECT_EQ(spec.get_int_attribute("clipblur:frame"), 7);
+        EXPECT_FLOAT_EQ(spec.get_float_attribute("clipblur:shutterOpen"), 0.25f);
+        EXPECT_FLOAT_EQ(spec.get_float_attribute("clipblur:shutterClose"), 0.75f);
+        EXPECT_FLOAT_EQ(spec.get_float_attribute("ExposureTime"), 0.5f / 24.0f);
+        EXPECT_EQ(spec.get_string_attribute("Software"), std::string("clipblur ") + kVersion);
+    }
+}
+
+// OpenEXR's own reader, not OpenImageIO's mapping of it, must see the standard attributes and the
+// per-channel types (installed by scripts/setup.sh from Debian's openexr).
+TEST(ImageWriter, ExrheaderSeesStandardAttributesAndFloatDepth) {
+    if (std::system("command -v exrheader > /dev/null 2>&1") != 0) GTEST_SKIP() << "exrheader (Debian openexr) missing";
+    const fs::path dir = freshDir("clipblur_exrheader_test");
+    ImageMetadata meta = metadata();
+    meta.frame = sampleFrameHeader();
+    const fs::path file = dir / "piz.exr";
+    writeExr(file, windowedImage(), meta, ExrFormat{true, ExrCompression::Piz});
+    const std::string text = capture("exrheader " + file.string());
+    // exrheader's own spelling of each attribute; the standard names are OpenEXR's, not OpenImageIO's.
+    const char* lines[] = {"framesPerSecond (type rational): 24000/1001",
+                           "expTime (type float):",
+                           "compression (type compression): piz",
+                           "chromaticities (type chromaticities):\n    red   (0.64 0.33)\n    green (0.3 0.6)\n"
+                           "    blue  (0.15 0.06)\n    white (0.3127 0.329)",
+                           "worldToCamera (type m44f):\n   (0.5 1.5 2.5 3.5",
+                           "worldToNDC (type m44f):\n   (0 -1 -2 -3",
+                           "    R, 16-bit floating-point",
+                           "    A, 16-bit floating-point",
+                           "    Z, 32-bit floating-point",
+                           "    motion.x, 32-bit floating-point",
+                           "    motion.y, 32-bit floating-point",
+                           "clipblur:frame (type int): 7"};
+    for (const char* expected : lines) EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
 }
 
 }  // namespace clipblur

@@ -191,6 +191,17 @@ TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
     EXPECT_EQ(y.config_hash, j.config_hash);
 }
 
+TEST(JobLoader, OutputCompressionAndBackground) {
+    const RenderJob job = loadJobFromText(
+        minimalYaml("output: {compression: piz, background: bake}\n"),
+        "c.yaml");
+    EXPECT_EQ(job.output.compression, ExrCompression::Piz);
+    EXPECT_EQ(job.output.background, BackgroundMode::Bake);
+    const RenderJob plain = loadJobFromText(minimalYaml(), "p.yaml");
+    EXPECT_EQ(plain.output.compression, ExrCompression::Zip);
+    EXPECT_EQ(plain.output.background, BackgroundMode::Separate);
+}
+
 TEST(JobLoader, DefaultsWhenOptionalSectionsAreAbsent) {
     const RenderJob job = loadJobFromText(minimalYaml(), "/nonexistent/m.yaml");
     const RenderJob defaults;
@@ -273,6 +284,8 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"EmptyScene", "e.yaml", "version: 1\n" + kCam + "objects: []\n", ExitCode::Scene, "[]", "no objects"},
         ErrorCase{"MissingObj", "e.yaml", "version: 1\n" + kCam + "objects:\n  - obj: nowhere.obj\n", ExitCode::Scene, "nowhere.obj", "nowhere.obj"},
         ErrorCase{"PrimitiveAndObj", "e.yaml", "version: 1\n" + kCam + "objects:\n  - {primitive: {type: box}, obj: x.obj}\n", ExitCode::Config, "x.obj", "both"},
+        ErrorCase{"BadCompression", "e.yaml", minimalYaml("output: {compression: lzma}\n"), ExitCode::Config, "lzma", "one of zip"},
+        ErrorCase{"BadBackground", "e.yaml", minimalYaml("output: {background: sky}\n"), ExitCode::Config, "sky", "one of separate"},
         ErrorCase{"LightKeyOfOtherType", "e.yaml", minimalYaml("lights: [{type: point, position: [0, 0, 0], direction: [0, 0, 1]}]\n"), ExitCode::Config, "direction", "unknown key 'lights[0].direction'"}),
     [](const auto& info) { return std::string(info.param.name); });
 

@@ -1,0 +1,41 @@
+#include "support/cli_harness.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+
+namespace clipblur::testing {
+
+int runShell(const std::string& command) {
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::filesystem::path freshTempDir(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+float ExrPixels::at(const std::string& name, int x, int y) const {
+    const int c = spec.channelindex(name);
+    EXPECT_GE(c, 0) << name;
+    return c < 0 ? 0.0f : at(c, static_cast<std::size_t>(y) * static_cast<std::size_t>(spec.width) + static_cast<std::size_t>(x));
+}
+
+ExrPixels readExrPixels(const std::filesystem::path& path) {
+    ExrPixels e;
+    auto in = OIIO::ImageInput::open(path.string());
+    EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
+    if (!in) return e;
+    e.spec = in->spec();
+    e.pixels.resize(static_cast<std::size_t>(e.spec.width) * static_cast<std::size_t>(e.spec.height) *
+                    static_cast<std::size_t>(e.spec.nchannels));
+    EXPECT_TRUE(in->read_image(0, 0, 0, e.spec.nchannels, OIIO::TypeDesc::FLOAT, e.pixels.data()));
+    return e;
+}
+
+}  // namespace clipblur::testing
