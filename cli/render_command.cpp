@@ -1,4 +1,5 @@
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <iostream>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "io/job_loader.h"
 #include "io/reference_error.h"
 #include "io/frame_path.h"
+#include "io/progress_timing.h"
 #include "io/shard.h"
 #include "io/stats_writer.h"
 #include "renderer/render.h"
@@ -65,24 +67,29 @@ ProgressStyle parseProgress(const std::string& text) {
     return ::isatty(STDERR_FILENO) ? ProgressStyle::Bar : ProgressStyle::Lines;  // auto
 }
 
-// Progress on stderr; calls arrive serialised from the renderer's worker threads.
+// Progress on stderr with elapsed time and ETA; calls arrive serialised from the renderer's worker threads.
 class ProgressPrinter {
 public:
-    ProgressPrinter(ProgressStyle style, int frame) : style_(style), frame_(frame) {}
+    ProgressPrinter(ProgressStyle style, int frame)
+        : style_(style), frame_(frame), start_(std::chrono::steady_clock::now()) {}
 
     void operator()(long long done, long long total) {
         if (total <= 0) return;
         const int percent = static_cast<int>(100 * done / total);
+        const std::string timing = progressTiming(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(), done, total);
         if (style_ == ProgressStyle::Bar) {
             const int width = 40;
             const int filled = static_cast<int>(width * done / total);
             std::cerr << "\rframe " << frame_ << " [" << std::string(static_cast<std::size_t>(filled), '#')
-                      << std::string(static_cast<std::size_t>(width - filled), ' ') << "] " << percent << "%"
-                      << (done == total ? "\n" : "") << std::flush;
+                      << std::string(static_cast<std::size_t>(width - filled), ' ') << "] " << percent << "% " << timing
+                      // Clears what a longer line before this one left behind.
+                      << "   " << (done == total ? "\n" : "") << std::flush;
         } else if (style_ == ProgressStyle::Lines && percent / 10 > last_decile_) {
             // Log files get one line per 10%, not one per tile.
             last_decile_ = percent / 10;
-            std::cerr << "frame " << frame_ << ": " << percent << "% (" << done << "/" << total << " tiles)\n";
+            std::cerr << "frame " << frame_ << ": " << percent << "% (" << done << "/" << total << " tiles), " << timing
+                      << "\n";
         }
     }
 
@@ -90,6 +97,7 @@ private:
     ProgressStyle style_;
     int frame_;
     int last_decile_ = -1;
+    std::chrono::steady_clock::time_point start_;
 };
 
 std::string pngPathFor(const std::string& image_path) {
@@ -174,6 +182,7 @@ Action addRenderCommand(CLI::App& app) {
             if (!opts->reference.empty())
                 reference = readReference(outputPathForFrame(opts->reference, frame, job.frames.first, job.frames.last),
                                           job.scene.film.width, job.scene.film.height);
+            const std::string start_time = utcTimestamp(std::chrono::system_clock::now());
             ProgressPrinter printer(style, frame);
             RenderCallbacks callbacks;
             callbacks.cancel = &g_cancel;
@@ -217,7 +226,7 @@ Action addRenderCommand(CLI::App& app) {
             }
             const std::string stats_path =
                 stats_pattern.empty() ? defaultStatsPath(image_path) : pathFor(stats_pattern, frame);
-            writeStats(stats_path, statsToJson(result.stats, frame, image_path, threads));
+            writeStats(stats_path, statsToJson(result.stats, {frame, image_path, threads, job.config_hash, start_time}));
             std::cout << " (stats " << stats_path << ")\n" << std::flush;
         }
         return 0;

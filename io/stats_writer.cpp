@@ -1,5 +1,6 @@
 #include "io/stats_writer.h"
 
+#include <ctime>
 #include <fstream>
 
 #include <sys/resource.h>
@@ -15,17 +16,28 @@ long long peakMemoryBytes() {
     return static_cast<long long>(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
 }
 
-nlohmann::json statsToJson(const RenderStats& stats, int frame, const std::string& image_path, int threads) {
+nlohmann::json statsToJson(const RenderStats& stats, const StatsContext& context) {
     nlohmann::json j;
-    j["frame"] = frame;
-    j["image"] = image_path;
-    j["threads"] = threads;
+    j["frame"] = context.frame;
+    j["image"] = context.image_path;
+    j["threads"] = context.threads;
+    j["config_hash"] = context.config_hash;
+    j["start_time"] = context.start_time;
     j["peak_memory_bytes"] = peakMemoryBytes();
     j["seconds"] = stats.seconds;
     j["counts"] = stats.counts;
     j["info"] = stats.info;
     if (!stats.error.empty()) j["error"] = stats.error;
     return j;
+}
+
+std::string utcTimestamp(std::chrono::system_clock::time_point time) {
+    const std::time_t t = std::chrono::system_clock::to_time_t(time);
+    std::tm utc{};
+    gmtime_r(&t, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    return text;
 }
 
 void writeStats(const std::filesystem::path& path, const nlohmann::json& stats) {

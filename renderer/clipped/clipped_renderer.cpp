@@ -24,6 +24,7 @@
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
 #include "renderer/visibility/embree_scene.h"
+#include "renderer/worker_threads.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -539,7 +540,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
 
     stats.info["method"] = both_frames ? "clipped" : "frame0_only";
     stats.counts["frame"] = frame;
-    stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
+    stats.counts["threads"] = workerThreads();
     stats.counts["tiles"] = ctx.grid.count();
     stats.counts["segments"] = static_cast<long long>(segments.size());
     stats.counts["hidden_probe_samples"] = probe.samples;
@@ -639,7 +640,7 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     stats.info["method"] = "accumulation";
     stats.counts["frame"] = frame;
     stats.counts["renders"] = n;
-    stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
+    stats.counts["threads"] = workerThreads();
     recordFrameStats(stats, "all_", frame_stats);
     if (mid) recordFrameStats(stats, "mid_", mid_stats);
     if (settings.audit) {

@@ -15,6 +15,7 @@
 #include "renderer/stopwatch.h"
 #include "renderer/tiles.h"
 #include "renderer/visibility/embree_scene.h"
+#include "renderer/worker_threads.h"
 #include "scene/camera.h"
 #include "scene/error.h"
 
@@ -184,7 +185,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     stats.counts["depth_rays"] = totals.depth_rays;
     stats.counts["rays"] = totals.primary_rays + totals.shadow_rays + totals.depth_rays;
     stats.counts["tiles"] = total_tiles;
-    stats.counts["threads"] = tbb::this_task_arena::max_concurrency();
+    stats.counts["threads"] = workerThreads();
     stats.counts["triangles"] = vs.triangles;
     stats.counts["dropped_triangles"] = vs.dropped_triangles;
     stats.counts["moving_objects"] = vs.moving_objects;

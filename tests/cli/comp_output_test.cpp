@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <OpenImageIO/imageio.h>
 
 #include "io/image_writer.h"
@@ -106,8 +107,8 @@ TEST(CompOutput, BeautyIsPremultipliedAndBakingIsAnOver) {
 }
 
 // forward.u / forward.v against the analytic image velocity, Z and motion float beside a half beauty,
-// the same bits on 1 and 2 threads, and the header of the frame.
-TEST(CompOutput, ForwardVectorsAndHeader) {
+// the same bits on 1 and 2 threads, and the header and stats of the frame.
+TEST(CompOutput, ForwardVectorsHeaderAndStats) {
     const fs::path dir = testing::freshTempDir("clipblur_comp_motion");
     const std::string job = std::string(kCamera) + kMoving;
     ASSERT_EQ(render(dir, "one", job, "--threads 1"), 0);
@@ -134,6 +135,13 @@ TEST(CompOutput, ForwardVectorsAndHeader) {
     for (int i = 0; i < 16; ++i) EXPECT_EQ(static_cast<const float*>(w2c->data())[i], expected[i]) << i;
     EXPECT_EQ(one.spec.get_int_attribute("clipblur:frame", -1), 0);
     EXPECT_FLOAT_EQ(one.spec.get_float_attribute("clipblur:shutterClose"), 0.5f);
+
+    std::ifstream stats(dir / "one.stats.json");
+    const nlohmann::json j = nlohmann::json::parse(stats);
+    EXPECT_EQ(j.at("counts").at("threads"), 1);
+    EXPECT_EQ(j.at("threads"), 1);
+    EXPECT_EQ(j.at("config_hash").get<std::string>(), one.spec.get_string_attribute("clipblur:configHash"));
+    EXPECT_EQ(j.at("start_time").get<std::string>().size(), std::string("2026-11-25T01:17:28Z").size());
 }
 
 }  // namespace clipblur

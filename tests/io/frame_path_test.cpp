@@ -61,11 +61,16 @@ TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
     stats.counts["rays"] = 1234;
     stats.info["method"] = "stochastic";
     const auto path = std::filesystem::temp_directory_path() / "clipblur_stats_test" / "s.json";
-    writeStats(path, statsToJson(stats, 3, "x.exr", 2));
+    // 1e9 s after the epoch is 2001-09-09 01:46:40 UTC (a well-known timestamp).
+    const StatsContext context{3, "x.exr", 2, "0123456789abcdef",
+                               utcTimestamp(std::chrono::system_clock::from_time_t(1000000000))};
+    writeStats(path, statsToJson(stats, context));
     std::ifstream in(path);
     const nlohmann::json j = nlohmann::json::parse(in);
     EXPECT_EQ(j.at("frame"), 3);
     EXPECT_EQ(j.at("threads"), 2);
+    EXPECT_EQ(j.at("config_hash"), "0123456789abcdef");
+    EXPECT_EQ(j.at("start_time"), "2001-09-09T01:46:40Z");
     EXPECT_EQ(j.at("counts").at("rays"), 1234);
     EXPECT_EQ(j.at("seconds").at("render"), 0.5);
     EXPECT_EQ(j.at("info").at("method"), "stochastic");
