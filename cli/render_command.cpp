@@ -14,6 +14,7 @@
 
 #include "cli/commands.h"
 #include "io/comp_channels.h"
+#include "io/cryptomatte.h"
 #include "io/exr_frame_header.h"
 #include "io/image_writer.h"
 #include "io/job_loader.h"
@@ -202,6 +203,11 @@ Action addRenderCommand(CLI::App& app) {
             meta.seed = job.render.seed;
             meta.config_hash = job.config_hash;
             meta.frame = frameHeader(job, frame);
+            if (job.output.cryptomatte.enabled) {
+                std::vector<std::string> names;
+                for (const Object& object : job.scene.objects) names.push_back(object.name);
+                meta.strings = addCryptomatte(result.image, result.objects, names, job.output.cryptomatte);
+            }
             if (const auto it = result.stats.seconds.find("total"); it != result.stats.seconds.end())
                 meta.render_seconds = it->second;
             if (shard) {

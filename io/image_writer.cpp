@@ -66,6 +66,7 @@ void addProvenance(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {
         spec.attribute(kTileIndexKey, metadata.tile_index);
         spec.attribute(kTileCountKey, metadata.tile_count);
     }
+    for (const auto& [name, value] : metadata.strings) spec.attribute(name, value);
 }
 
 OIIO::ImageSpec exrSpec(const Image& image, const ExrFormat& format) {

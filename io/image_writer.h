@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,7 @@ struct ImageMetadata {
     int tile_index = -1;  // a shard of `render --tile I/N`: I and N; omitted when tile_count < 1
     int tile_count = 0;
     std::optional<FrameHeader> frame;  // camera matrices, fps, frame, shutter; omitted when unset
+    std::map<std::string, std::string> strings;  // further string attributes as named (Cryptomatte's)
 };
 
 struct ExrFormat {

@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "renderer/image.h"
+#include "renderer/object_coverage.h"
 #include "scene/job.h"
 
 namespace clipblur {
@@ -15,6 +16,7 @@ struct RenderCallbacks {
 
 struct RenderResult {
     Image image;  // R, G, B, A and the AOVs the job asks for, over renderWindow(job) only
+    ObjectCoverage objects;  // per-object coverage over the same window when output.cryptomatte asks
     RenderStats stats;
 };
 

@@ -59,6 +59,14 @@ struct RenderSettings {
 enum class BackgroundMode { Separate, Bake };
 enum class ExrCompression { Zip, Piz, Dwaa, None };
 
+// Cryptomatte ID mattes of objects (Psyop's specification 1.1.0): `depth` ranked (ID, coverage) pairs
+// per pixel in layers <name>00, <name>01, ... (two pairs each).
+struct CryptomatteSettings {
+    bool enabled = false;
+    std::string name = "CryptoObject";
+    int depth = 6;
+};
+
 struct OutputSettings {
     std::string path = "render.exr";
     bool half = true;          // R, G, B, A and coverage only; Z and motion are always float
@@ -68,6 +76,7 @@ struct OutputSettings {
     bool aov_depth = false;
     bool aov_coverage = false;
     bool aov_motion = false;
+    CryptomatteSettings cryptomatte;
     std::string stats_path;    // empty: beside the image as <image>.stats.json
 };
 

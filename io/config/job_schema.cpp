@@ -305,6 +305,20 @@ void readRender(MapReader map, RenderSettings& r) {
     map.finish();
 }
 
+// Channel names are <name>00.R ...: a '.' would start another layer, so names are [A-Za-z0-9_].
+void readCryptomatte(MapReader map, CryptomatteSettings& crypto) {
+    crypto.enabled = true;
+    if (const ConfigNode* n = map.optional("name")) {
+        crypto.name = asString(*n, map.keyPath("name"));
+        const bool plain = !crypto.name.empty() && crypto.name.size() <= 64 &&
+                           crypto.name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_") ==
+                               std::string::npos;
+        if (!plain) throwConfigError(n->loc, "'" + map.keyPath("name") + "' must be 1 to 64 of A-Z, a-z, 0-9, _");
+    }
+    crypto.depth = map.integer("depth", crypto.depth, 1, 32);
+    map.finish();
+}
+
 void readOutput(MapReader map, OutputSettings& out) {
     if (const ConfigNode* p = map.optional("path")) {
         out.path = asString(*p, "output.path");
@@ -312,8 +326,14 @@ void readOutput(MapReader map, OutputSettings& out) {
     }
     out.half = map.boolean("half", out.half);
     out.png_preview = map.boolean("png_preview", out.png_preview);
-    if (const ConfigNode* c = map.optional("compression"))
-        out.compression = static_cast<ExrCompression>(asChoice(*c, "output.compression", {"zip", "piz", "dwaa", "none"}));
+    const ConfigNode* compression = map.optional("compression");
+    if (compression)
+        out.compression =
+            static_cast<ExrCompression>(asChoice(*compression, "output.compression", {"zip", "piz", "dwaa", "none"}));
+    if (const ConfigNode* c = map.optional("cryptomatte")) readCryptomatte(MapReader(*c, "output.cryptomatte"), out.cryptomatte);
+    // DWA compresses channels named R, G, B lossily, which would change the IDs in <name>00.R ...
+    if (out.cryptomatte.enabled && out.compression == ExrCompression::Dwaa)
+        throwConfigError(compression->loc, "'output.compression: dwaa' is lossy and would corrupt Cryptomatte IDs");
     if (const ConfigNode* b = map.optional("background"))
         out.background = static_cast<BackgroundMode>(asChoice(*b, "output.background", {"separate", "bake"}));
     if (const ConfigNode* a = map.optional("aovs")) {
@@ -361,7 +381,13 @@ JobDescription readJobDescription(const ConfigNode& root) {
                                                  " triangles");
     }
     if (const ConfigNode* n = top.optional("render")) readRender(MapReader(*n, "render"), job.render);
-    if (const ConfigNode* n = top.optional("output")) readOutput(MapReader(*n, "output"), job.output);
+    if (const ConfigNode* n = top.optional("output")) {
+        readOutput(MapReader(*n, "output"), job.output);
+        // Per-object coverage is counted per sample by the stochastic renderer; the clipped renderer's
+        // fragment sums do not carry their object yet.
+        if (job.output.cryptomatte.enabled && job.render.method != Method::Stochastic)
+            throwConfigError(n->find("cryptomatte")->loc, "'output.cryptomatte' needs 'render.method: stochastic' in this version");
+    }
     top.finish();
     return out;
 }

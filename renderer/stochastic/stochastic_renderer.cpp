@@ -4,6 +4,8 @@
 #include <limits>
 #include <mutex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -74,6 +76,8 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     float* cov_out = out.aov_coverage ? image.find("coverage")->values.data() : nullptr;
     float* mx_out = out.aov_motion ? image.find("motion.x")->values.data() : nullptr;
     float* my_out = out.aov_motion ? image.find("motion.y")->values.data() : nullptr;
+    const bool count_objects = out.cryptomatte.enabled;
+    if (count_objects) result.objects.pixels.resize(image.channels[0].values.size());
 
     const std::uint64_t frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
     const long long total_tiles = grid.count();
@@ -105,6 +109,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                     double depth_sum = 0.0, depth_covered = 0.0;
                     glm::dvec2 motion_sum(0.0);
                     double motion_count = 0.0;
+                    std::vector<ObjectShare> shares;  // samples per object, for ID mattes
                     for (const SpaceTimeSample& s : pixel_samples) {
                         const double t = t0 + (t1 - t0) * s.time;
                         const CameraFrame camera = camera_table.at(t);
@@ -132,6 +137,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                                                       shader.objectPosition(point)};
                         colour += shader.shade(point, surface, camera.position, &counters.shadow_rays);
                         covered += 1.0;
+                        if (count_objects) addShare(shares, hit.object, 1.0);
                         if (mx_out) {
                             SurfacePoint at = point;
                             at.time = t0;
@@ -150,6 +156,10 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                     rgba[2][pixel] = static_cast<float>(colour.b * inv);
                     rgba[3][pixel] = static_cast<float>(covered * inv);
                     if (cov_out) cov_out[pixel] = static_cast<float>(covered * inv);
+                    if (count_objects) {
+                        for (ObjectShare& s : shares) s.coverage *= inv;
+                        result.objects.pixels[pixel] = std::move(shares);
+                    }
                     if (z_out)
                         z_out[pixel] = depth_covered > 0.0 ? static_cast<float>(depth_sum / depth_covered)
                                                      : std::numeric_limits<float>::infinity();

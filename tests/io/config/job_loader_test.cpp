@@ -191,15 +191,20 @@ TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
     EXPECT_EQ(y.config_hash, j.config_hash);
 }
 
-TEST(JobLoader, OutputCompressionAndBackground) {
+TEST(JobLoader, OutputCompressionBackgroundAndCryptomatte) {
     const RenderJob job = loadJobFromText(
-        minimalYaml("output: {compression: piz, background: bake}\n"),
+        minimalYaml("render: {method: stochastic}\n"
+                    "output: {compression: piz, background: bake, cryptomatte: {name: CryptoAsset, depth: 4}}\n"),
         "c.yaml");
     EXPECT_EQ(job.output.compression, ExrCompression::Piz);
     EXPECT_EQ(job.output.background, BackgroundMode::Bake);
+    EXPECT_TRUE(job.output.cryptomatte.enabled);
+    EXPECT_EQ(job.output.cryptomatte.name, "CryptoAsset");
+    EXPECT_EQ(job.output.cryptomatte.depth, 4);
     const RenderJob plain = loadJobFromText(minimalYaml(), "p.yaml");
     EXPECT_EQ(plain.output.compression, ExrCompression::Zip);
     EXPECT_EQ(plain.output.background, BackgroundMode::Separate);
+    EXPECT_FALSE(plain.output.cryptomatte.enabled);
 }
 
 TEST(JobLoader, DefaultsWhenOptionalSectionsAreAbsent) {
@@ -286,6 +291,11 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"PrimitiveAndObj", "e.yaml", "version: 1\n" + kCam + "objects:\n  - {primitive: {type: box}, obj: x.obj}\n", ExitCode::Config, "x.obj", "both"},
         ErrorCase{"BadCompression", "e.yaml", minimalYaml("output: {compression: lzma}\n"), ExitCode::Config, "lzma", "one of zip"},
         ErrorCase{"BadBackground", "e.yaml", minimalYaml("output: {background: sky}\n"), ExitCode::Config, "sky", "one of separate"},
+        ErrorCase{"CryptomatteWithDwaa", "e.yaml", minimalYaml("render: {method: stochastic}\noutput: {compression: dwaa, cryptomatte: {}}\n"),
+                  ExitCode::Config, "dwaa", "corrupt Cryptomatte"},
+        ErrorCase{"CryptomatteNeedsStochastic", "e.yaml", minimalYaml("output: {cryptomatte: {depth: 4}}\n"), ExitCode::Config, "{depth: 4}", "stochastic"},
+        ErrorCase{"CryptomatteLayerName", "e.yaml", minimalYaml("render: {method: stochastic}\noutput: {cryptomatte: {name: a.b}}\n"),
+                  ExitCode::Config, "a.b", "A-Z"},
         ErrorCase{"LightKeyOfOtherType", "e.yaml", minimalYaml("lights: [{type: point, position: [0, 0, 0], direction: [0, 0, 1]}]\n"), ExitCode::Config, "direction", "unknown key 'lights[0].direction'"}),
     [](const auto& info) { return std::string(info.param.name); });
 
