@@ -47,6 +47,8 @@ std::vector<RankedId> rankPixel(const std::vector<ObjectShare>& shares, const st
         else
             ranked.push_back({h, cryptomatteId(h), s.coverage});
     }
+    // A coverage of 0 or -1e-17 is rounding where signed parts cancel (the clipped renderer's swept pixels).
+    std::erase_if(ranked, [](const RankedId& r) { return !(r.coverage > 0.0); });
     std::sort(ranked.begin(), ranked.end(), [](const RankedId& a, const RankedId& b) {
         return a.coverage != b.coverage ? a.coverage > b.coverage : a.hash < b.hash;
     });

@@ -381,13 +381,7 @@ JobDescription readJobDescription(const ConfigNode& root) {
                                                  " triangles");
     }
     if (const ConfigNode* n = top.optional("render")) readRender(MapReader(*n, "render"), job.render);
-    if (const ConfigNode* n = top.optional("output")) {
-        readOutput(MapReader(*n, "output"), job.output);
-        // Per-object coverage is counted per sample by the stochastic renderer; the clipped renderer's
-        // fragment sums do not carry their object yet.
-        if (job.output.cryptomatte.enabled && job.render.method != Method::Stochastic)
-            throwConfigError(n->find("cryptomatte")->loc, "'output.cryptomatte' needs 'render.method: stochastic' in this version");
-    }
+    if (const ConfigNode* n = top.optional("output")) readOutput(MapReader(*n, "output"), job.output);
     top.finish();
     return out;
 }

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -31,6 +32,13 @@ namespace clipblur {
 
 namespace {
 
+// What a pixel's sums are scaled by when written: 1, or 1 / covered where the covered fraction exceeds 1.
+// Sweep integration holds visibility as resolved at each re-clip, so surfaces moving differently can
+// overlap within an interval (its occlusion error, falling with re-clips): their sums count the overlap
+// twice. Scaling the colour and the per-object shares alike keeps the colour premultiplied by A = 1 and
+// the shares summing to A. Elsewhere covered exceeds 1 by rounding only.
+double overCoverScale(double covered) { return covered > 1.0 ? 1.0 / covered : 1.0; }
+
 // Writes one pixel's averaged sums (colour, covered area, depth and motion sums). The colour is
 // premultiplied: what the surfaces contribute only, so compositors can "over" it onto any background.
 struct ImageWriter {
@@ -47,7 +55,9 @@ struct ImageWriter {
     // z: the pixel's depth AOV (meanDepth).
     void write(std::size_t pixel, const glm::dvec3& colour, double covered, float z, const glm::dvec2& motion) {
         const double c = std::clamp(covered, 0.0, 1.0);
-        for (int k = 0; k < 3; ++k) image.channels[static_cast<std::size_t>(k)].values[pixel] = static_cast<float>(colour[k]);
+        const double scale = overCoverScale(covered);
+        for (int k = 0; k < 3; ++k)
+            image.channels[static_cast<std::size_t>(k)].values[pixel] = static_cast<float>(colour[k] * scale);
         image.channels[3].values[pixel] = static_cast<float>(c);
         if (coverage) coverage->values[pixel] = static_cast<float>(c);
         if (depth) depth->values[pixel] = z;
@@ -132,17 +142,26 @@ struct WindowSums {
     std::vector<double> covered;
     std::vector<double> depth;
     std::vector<glm::dvec2> motion;
+    std::vector<ObjectShares> objects;  // per object its share of `covered`; empty unless ID mattes are asked for
 
-    explicit WindowSums(std::size_t pixels) : colour(pixels), covered(pixels), depth(pixels), motion(pixels) {}
+    WindowSums(std::size_t pixels, bool with_objects)
+        : colour(pixels), covered(pixels), depth(pixels), motion(pixels), objects(with_objects ? pixels : 0) {}
 
-    // Adds scale x one pixel's sums to pixel i.
-    void add(std::size_t i, double scale, const glm::dvec3& c, double cov, double d, const glm::dvec2& m = {}) {
+    // Adds scale x one pixel's sums to pixel i; `shares` (that pixel's per-object areas) when tracked.
+    void add(std::size_t i, double scale, const glm::dvec3& c, double cov, double d, const glm::dvec2& m = {},
+             const ObjectShares* shares = nullptr) {
         colour[i] += scale * c;
         covered[i] += scale * cov;
         depth[i] += scale * d;
         motion[i] += scale * m;
+        if (shares && !objects.empty()) addShares(objects[i], *shares, scale);
     }
 };
+
+// Pixel p's per-object areas in `sums`, or null when they are not tracked.
+const ObjectShares* sharesAt(const PixelSums& sums, std::size_t p) {
+    return sums.objects.empty() ? nullptr : &sums.objects[p];
+}
 
 // A segment with a still backdrop (MotionPlan::backdrop): what moves in front covers a backdrop tile's
 // pixel for the fraction of the segment its swept coverage gives, so the pixel sees front + (1 - that) x
@@ -155,11 +174,12 @@ void compositeBackdrop(const WindowSums& front, const PixelSums& backdrop, const
     for (int y = window.y0; y < window.y1(); ++y) {
         for (int x = window.x0; x < window.x1(); ++x) {
             const std::size_t i = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
-            sums.add(i, 1.0, front.colour[i], front.covered[i], front.depth[i], front.motion[i]);
+            sums.add(i, 1.0, front.colour[i], front.covered[i], front.depth[i], front.motion[i],
+                     front.objects.empty() ? nullptr : &front.objects[i]);
             if (!plan.backdrop[static_cast<std::size_t>((y / size) * grid.columns() + x / size)]) continue;
             const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
             const std::size_t p = static_cast<std::size_t>(y) * film_w + x;
-            sums.add(i, seen, backdrop.colour[p], backdrop.covered[p], backdrop.depth[p]);
+            sums.add(i, seen, backdrop.colour[p], backdrop.covered[p], backdrop.depth[p], {}, sharesAt(backdrop, p));
         }
     }
 }
@@ -200,6 +220,7 @@ struct Spill {
     glm::dvec3 colour{0.0};
     double covered = 0.0, depth = 0.0;
     glm::dvec2 motion{0.0};
+    ObjectShares objects;  // ID mattes only
 };
 
 // The sweep interval layout of a moving tile with n subframes: its fragments move at most reach pixels
@@ -233,6 +254,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     const bool still_scene = subframes == 0 && sceneIsStill(scene, ts, te);
     const bool both_frames = settings.method != Method::Frame0Only && !still_scene;
     const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
+    const bool track_objects = ctx.job.output.cryptomatte.enabled;
 
     // 1. Clipped, shaded fragment sets at the segment's ends, over the image and a guard band wide
     // enough that everything seen during the segment is in one of them. A closing set that the next
@@ -256,7 +278,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         totals.carried.reset();
     } else {
         FrameFragmentStats open_stats;
-        still.resize(film_pixels);
+        still.resize(film_pixels, track_objects);
         open = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), ts, ctx.shader,
                                    options, ctx.callbacks, &still, open_stats);
         totals.open.merge(open_stats);
@@ -266,7 +288,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     if (both_frames) {
         FrameFragmentStats close_stats;
         PixelSums next_still;
-        if (carry) next_still.resize(film_pixels);
+        if (carry) next_still.resize(film_pixels, track_objects);
         close = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), te, ctx.shader,
                                     options, ctx.callbacks, carry ? &next_still : nullptr, close_stats);
         totals.close.merge(close_stats);
@@ -300,7 +322,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     // With a backdrop the segment's front sums are kept apart until every spill is in.
     std::optional<WindowSums> front;
     if (plan.backdrop_tiles > 0) {
-        front.emplace(sums.colour.size());
+        front.emplace(sums.colour.size(), track_objects);
         if (!totals.backdrop)
             totals.backdrop = renderBackdrop(ctx.job, ctx.backdrop, 0.5 * (ctx.t0 + ctx.t1), ctx.projection,
                                              ctx.grid, ctx.callbacks, totals.backdrop_stats);
@@ -368,6 +390,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             return;
         }
         std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
+        for (TileSums& s : tile_sums) s.track_objects = track_objects;
         std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
         const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
         const double half = 0.5 * (te - ts) / std::max(n, 1);
@@ -399,6 +422,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 sum.covered += s.covered[i];
                 sum.depth += s.depth[i];
                 sum.motion += s.motion[i];
+                if (track_objects) addShares(sum.objects, s.objects[i], 1.0);
             }
             return sum;
         };
@@ -407,11 +431,12 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 const std::size_t out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
                 if (still_tile) {
                     const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
-                    target.add(out, weight, still.colour[pixel], still.covered[pixel], still.depth[pixel]);
+                    target.add(out, weight, still.colour[pixel], still.covered[pixel], still.depth[pixel], {},
+                               sharesAt(still, pixel));
                     continue;
                 }
                 const Spill sum = total(x, y);
-                target.add(out, w, sum.colour, sum.covered, sum.depth, sum.motion);
+                target.add(out, w, sum.colour, sum.covered, sum.depth, sum.motion, &sum.objects);
             }
         }
         if (sweeping && n > 0) {
@@ -430,7 +455,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                     sum.covered *= w;
                     sum.depth *= w;
                     sum.motion *= w;
-                    mine.push_back(sum);
+                    for (ObjectShare& o : sum.objects) o.coverage *= w;
+                    mine.push_back(std::move(sum));
                 }
             }
         }
@@ -445,7 +471,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     });
     for (const auto& tile_spills : spills) {
         for (const Spill& s : tile_spills) {
-            target.add(s.out, 1.0, s.colour, s.covered, s.depth, s.motion);
+            target.add(s.out, 1.0, s.colour, s.covered, s.depth, s.motion, &s.objects);
             ++totals.spilled;
         }
     }
@@ -501,7 +527,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     }
     stats.seconds["hidden_probe"] = secondsSince(stage);
     stage = Clock::now();
-    WindowSums sums(static_cast<std::size_t>(ctx.window.width) * ctx.window.height);
+    WindowSums sums(static_cast<std::size_t>(ctx.window.width) * ctx.window.height, job.output.cryptomatte.enabled);
     SegmentTotals totals;
     std::vector<int> bands;
     for (const ShutterSegment& s : segments)
@@ -534,8 +560,12 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
             const std::size_t p = static_cast<std::size_t>(y) * scene.film.width + x;
             const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(sums.depth[i], sums.covered[i]);
             writer.write(result.image.index(x, y), sums.colour[i], sums.covered[i], z, sums.motion[i]);
+            if (sums.objects.empty()) continue;
+            const double scale = overCoverScale(sums.covered[i]);
+            for (ObjectShare& o : sums.objects[i]) o.coverage *= scale;
         }
     }
+    result.objects.pixels = std::move(sums.objects);  // window-local row-major, as the image
     stats.seconds["total"] = secondsSince(start);
 
     stats.info["method"] = both_frames ? "clipped" : "frame0_only";
@@ -608,18 +638,20 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
     const MeshAdjacency adjacency(scene);
 
+    const bool track_objects = job.output.cryptomatte.enabled;
     PixelSums total;
-    total.resize(pixels);
+    total.resize(pixels, track_objects);
     FrameFragmentStats frame_stats;
     for (const double t : subframeTimes(t0, t1, n)) {
         PixelSums sums;
-        sums.resize(pixels);
+        sums.resize(pixels, track_objects);
         buildFrameFragments(scene, embree, adjacency, projection, grid, t, shader,
                             {settings.visibility_rays, false, settings.audit}, callbacks, &sums, frame_stats);
         for (std::size_t p = 0; p < pixels; ++p) {
             total.colour[p] += sums.colour[p];
             total.covered[p] += sums.covered[p];
             total.depth[p] += sums.depth[p];
+            if (track_objects) addShares(total.objects[p], sums.objects[p], 1.0);
         }
     }
     FrameFragmentStats mid_stats;
@@ -634,6 +666,11 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
             const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(total.depth[p], total.covered[p]);
             writer.write(result.image.index(x, y), total.colour[p] / double(n), total.covered[p] / double(n), z,
                          glm::dvec2(0.0));
+            if (!track_objects) continue;
+            ObjectShares& shares = total.objects[p];
+            const double scale = overCoverScale(total.covered[p] / double(n));
+            for (ObjectShare& o : shares) o.coverage = o.coverage / double(n) * scale;
+            result.objects.pixels.push_back(std::move(shares));  // the window in row-major order
         }
     }
     RenderStats& stats = result.stats;

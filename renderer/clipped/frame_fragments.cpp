@@ -13,10 +13,11 @@
 
 namespace clipblur {
 
-void PixelSums::resize(std::size_t pixels) {
+void PixelSums::resize(std::size_t pixels, bool with_objects) {
     colour.assign(pixels, glm::dvec3(0.0));
     covered.assign(pixels, 0.0);
     depth.assign(pixels, 0.0);
+    objects.assign(with_objects ? pixels : 0, {});
 }
 
 namespace {
@@ -168,6 +169,8 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
                     for (const ShadedPiece& piece : pieces) {
                         still->colour[pixel] += piece.area * piece.colour;
                         still->covered[pixel] += piece.area;
+                        if (!still->objects.empty())
+                            addShare(still->objects[pixel], static_cast<int>(source.object), piece.area);
                         SourceSample s;
                         if (evalSource(screen, centroid(piece.polygon), s)) still->depth[pixel] += piece.area / s.inv_depth;
                     }

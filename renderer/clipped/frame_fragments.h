@@ -8,6 +8,7 @@
 #include "renderer/clipped/fragment_triangle.h"
 #include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/pixel_resolver.h"
+#include "renderer/object_coverage.h"
 #include "renderer/render.h"
 #include "renderer/shading/shading.h"
 #include "renderer/tiles.h"
@@ -21,8 +22,10 @@ struct PixelSums {
     std::vector<glm::dvec3> colour;
     std::vector<double> covered;
     std::vector<double> depth;  // area-weighted camera depth sum (for the Z AOV)
+    std::vector<ObjectShares> objects;  // per object its covered area; empty unless asked for (ID mattes)
 
-    void resize(std::size_t pixels);
+    // Zeroed sums for `pixels` pixels, with per-object areas when `objects` is set.
+    void resize(std::size_t pixels, bool objects = false);
 };
 
 struct FrameFragmentStats {

@@ -68,16 +68,23 @@ PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double 
                          const TileGrid& grid, const RenderCallbacks& callbacks, FrameFragmentStats& stats) {
     Scene still = job.scene;
     still.objects.clear();
-    for (std::size_t o = 0; o < job.scene.objects.size(); ++o)
-        if (backdrop.objects[o]) still.objects.push_back(job.scene.objects[o]);
+    std::vector<int> original;  // per object of `still`, its index in the job's scene
+    for (std::size_t o = 0; o < job.scene.objects.size(); ++o) {
+        if (!backdrop.objects[o]) continue;
+        still.objects.push_back(job.scene.objects[o]);
+        original.push_back(static_cast<int>(o));
+    }
     const EmbreeDevice device;
     const EmbreeScene embree(device, still, time, time);
     const Shader shader(still, time, time);
     const MeshAdjacency adjacency(still);
     PixelSums sums;
-    sums.resize(static_cast<std::size_t>(still.film.width) * still.film.height);
+    sums.resize(static_cast<std::size_t>(still.film.width) * still.film.height, job.output.cryptomatte.enabled);
     buildFrameFragments(still, embree, adjacency, projection, grid, time, shader,
                         {job.render.visibility_rays, false, job.render.audit}, callbacks, &sums, stats);
+    // The mapping keeps object order, so each pixel's shares stay sorted.
+    for (ObjectShares& shares : sums.objects)
+        for (ObjectShare& s : shares) s.object = original[static_cast<std::size_t>(s.object)];
     return sums;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "renderer/visibility/frame_geometry.h"
 
@@ -16,6 +17,23 @@ void TileSums::reset(const Tile& b) {
     covered.assign(pixels, 0.0);
     depth.assign(pixels, 0.0);
     motion.assign(pixels, glm::dvec2(0.0));
+    objects.assign(track_objects ? pixels : 0, {});
+}
+
+void PolygonObjects::add(int object, double amount) {
+    for (int k = 0; k < count; ++k) {
+        if (shares[static_cast<std::size_t>(k)].object == object) {
+            shares[static_cast<std::size_t>(k)].coverage += amount;
+            return;
+        }
+    }
+    // Two sources per fragment, minus a rectangle's two: four entries always suffice.
+    if (count == static_cast<int>(shares.size())) throw std::logic_error("PolygonObjects: more than 4 objects");
+    shares[static_cast<std::size_t>(count++)] = {object, amount};
+}
+
+bool PolygonObjects::none() const {
+    return std::all_of(shares.begin(), shares.begin() + count, [](const ObjectShare& s) { return s.coverage == 0.0; });
 }
 
 namespace {
@@ -184,7 +202,10 @@ void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector
         if (e.coverage) {
             if (i == base) continue;
             e.colour -= rectangle.colour;
-            if (e.colour == glm::dvec3(0.0)) continue;
+            for (int k = 0; k < rectangle.objects.count; ++k)
+                e.objects.add(rectangle.objects.shares[static_cast<std::size_t>(k)].object,
+                              -rectangle.objects.shares[static_cast<std::size_t>(k)].coverage);
+            if (e.colour == glm::dvec3(0.0) && e.objects.none()) continue;
             e.coverage = false;
         }
         staging.push_back(e);
@@ -208,11 +229,18 @@ void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipS
     box = {std::max(box.x0, sweep.box.x0), std::max(box.y0, sweep.box.y0), std::min(box.x1, sweep.box.x1),
            std::min(box.y1, sweep.box.y1)};
     out.reset(box);
+    const auto addObjects = [&](std::size_t i, double w, const PolygonObjects& objects) {
+        for (int k = 0; k < objects.count; ++k)
+            addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,
+                     w * objects.shares[static_cast<std::size_t>(k)].coverage);
+    };
     for (const SweptPolygon& p : scratch.swept) {
         // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
         if (!p.coverage) {
             forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w) {
-                if (out.contains(x, y)) out.colour[out.index(x, y)] += w * p.colour;
+                if (!out.contains(x, y)) return;
+                out.colour[out.index(x, y)] += w * p.colour;
+                if (out.track_objects) addObjects(out.index(x, y), w, p.objects);
             });
             continue;
         }
@@ -220,6 +248,7 @@ void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipS
             if (!out.contains(x, y)) return;
             const std::size_t i = out.index(x, y);
             out.colour[i] += w * p.colour;
+            if (out.track_objects) addObjects(i, w, p.objects);
             out.covered[i] += w;
             out.motion[i] += w * p.motion;
             out.depth[i] += w * p.depth;
@@ -287,6 +316,9 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                            shader.sameFromBoth(a.object, a.triangle, layers.eye[0], layers.eye[1]);
                 };
                 const bool shade_once = fragment.source_count == 2 && shadeOnce();
+                PolygonObjects objects;  // ID mattes: each source's object with its mix factor
+                for (int k = 0; out.track_objects && k < fragment.source_count; ++k)
+                    objects.add(static_cast<int>(scratch.sources[fragment.sources[k].source].object), fragment.mix(k));
                 for (int k = 0; k < fragment.source_count; ++k) {
                     const std::uint32_t s = fragment.sources[k].source;
                     const FragmentRef ref = scratch.origin[s];
@@ -330,6 +362,9 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     out.covered[i] += area;
                     out.motion[i] += area * motion;
                     if (inv_depth > 0.0) out.depth[i] += area / inv_depth;
+                    for (int k = 0; k < objects.count; ++k)
+                        addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,
+                                 area * objects.shares[static_cast<std::size_t>(k)].coverage);
                 };
                 if (!sweep) {
                     add(out.index(x, y), fragment.area);
@@ -357,9 +392,10 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                     one_surface = one_surface && group == pixel_group;
                 }
                 // Swept after the tile's last fragment: only then is the box they reach known.
-                scratch.swept.push_back({polygon, shift, positions, colour, motion, sampled ? 1.0 / inv_depth : 0.0, true});
+                scratch.swept.push_back(
+                    {polygon, shift, positions, colour, motion, sampled ? 1.0 / inv_depth : 0.0, true, objects});
                 for (const auto& [piece, piece_colour] : scratch.textured)
-                    scratch.swept.push_back({piece, shift, positions, piece_colour, {}, 0.0, false});
+                    scratch.swept.push_back({piece, shift, positions, piece_colour, {}, 0.0, false, {}});
             }
             if (one_surface) mergePixel(scratch.swept, pixel_begin, scratch.staging);
             for (std::size_t i = pixel_begin; i < scratch.swept.size(); ++i)

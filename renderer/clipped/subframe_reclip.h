@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/fragment_tile.h"
 #include "renderer/geometry/swept_footprint.h"
+#include "renderer/object_coverage.h"
 #include "renderer/propagation/ode_propagation.h"
 #include "renderer/propagation/surface_path.h"
 #include "renderer/shading/fragment_shading.h"
@@ -42,6 +44,8 @@ struct TileSums {
     std::vector<double> covered;
     std::vector<double> depth;
     std::vector<glm::dvec2> motion;
+    bool track_objects = false;         // set before reclipSubframe: fill `objects` (ID mattes)
+    std::vector<ObjectShares> objects;  // per object its covered area, as `covered` sums all of them
 
     void reset(const Tile& box);
     bool contains(int x, int y) const { return x >= box.x0 && x < box.x1 && y >= box.y0 && y < box.y1; }
@@ -82,6 +86,17 @@ struct SweepInterval {
     std::span<const std::uint32_t> groups;
 };
 
+// Per px^2 of a swept polygon, what each object adds to its coverage: a fragment's sources with their
+// mix factors; a fragment merged into its pixel's rectangle (mergePixel) its difference to the
+// rectangle's, signed, as its colour is carried; nothing for a texture piece.
+struct PolygonObjects {
+    std::array<ObjectShare, 4> shares{};
+    int count = 0;
+
+    void add(int object, double amount);  // merged into an entry of the same object
+    bool none() const;                    // every entry zero: the polygon adds no coverage
+};
+
 // Sweep: one polygon to sweep and what it adds per px^2 of its footprint. Texture pieces add only their
 // colour difference (coverage false); fragments add colour, coverage, motion and depth.
 struct SweptPolygon {
@@ -92,6 +107,7 @@ struct SweptPolygon {
     glm::dvec2 motion{0.0};
     double depth = 0.0;  // 0 where unknown: adds nothing to the depth sums
     bool coverage = true;
+    PolygonObjects objects;
 };
 
 struct ReclipScratch {

@@ -18,9 +18,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Three objects, each with its own untextured material, one moving and turning across the other two:
-// blurred edges where several objects share a pixel. Stochastic, so each pixel's coverage is counted
-// per sample.
+// Four objects, each with its own untextured material: a ball moving across a turning box, a floor and a
+// wall far behind (still: with sweep integration the tiles where only the ball passes in front of it
+// composite it as a still backdrop); blurred edges where several objects share a pixel. The render
+// settings come from the test case.
 const char* kScene = R"(version: 1
 film: {width: 40, height: 24, background: 0.3}
 camera:
@@ -30,6 +31,7 @@ materials:
   - {name: m_ball, color: [0.9, 0.3, 0.2]}
   - {name: m_box, color: [0.2, 0.7, 0.3]}
   - {name: m_floor, color: 0.5}
+  - {name: m_wall, color: 0.4}
 lights: [{type: directional, direction: [0.3, -1, 0.5]}]
 objects:
   - name: ball
@@ -45,7 +47,10 @@ objects:
   - name: floor
     material: m_floor
     primitive: {type: quad, size: 12}
-render: {method: stochastic, samples: 16, seed: 5}
+  - name: wall
+    material: m_wall
+    primitive: {type: quad, size: 12}
+    transform: [{time: 0, translate: [0, 3, 6], rotate: {axis: [1, 0, 0], angle_deg: -90}}]
 output: {half: false, cryptomatte: {name: CryptoObject}}
 )";
 
@@ -85,41 +90,73 @@ std::vector<float> decodeMatte(const ExrPixels& e, const std::string& type, cons
 
 }  // namespace
 
-TEST(CryptomatteRender, DecodedMatteEqualsAWhiteOnBlackRender) {
-    const fs::path dir = testing::freshTempDir("clipblur_cryptomatte_render");
-    std::ofstream(dir / "scene.yaml") << kScene;
+struct MatteCase {
+    const char* name;
+    const char* render;  // the job's render section
+    const char* object;  // whose matte is checked (its material is materials.<material>)
+    int material;
+};
+
+class CryptomatteRender : public ::testing::TestWithParam<MatteCase> {};
+
+// The matte of one object, decoded from the file as the specification says, equals a render of the
+// same scene in which that object is white and everything else black, unlit (ambient 1, no lights):
+// there each pixel's R is the object's share of pixel area x shutter time, accumulated as colour is.
+// Stochastic: both are (samples on the object) / samples, rounded to float once. Clipped methods: the
+// same fragments, mix factors and weights make both; 1e-6 allows for the sums' rounding.
+TEST_P(CryptomatteRender, DecodedMatteEqualsAWhiteOnBlackRender) {
+    const MatteCase& c = GetParam();
+    const fs::path dir = testing::freshTempDir(std::string("clipblur_cryptomatte_render_") + c.name);
+    std::ofstream(dir / "scene.yaml") << kScene << "render: " << c.render << "\n";
     const std::string render = std::string(CLIPBLUR_BINARY) + " render " + (dir / "scene.yaml").string() + " --progress none";
     const std::string quiet = " > " + (dir / "log.txt").string() + " 2>&1";
     ASSERT_EQ(testing::runShell(render + " --threads 1 --out " + (dir / "crypto.exr").string() + quiet), 0);
     ASSERT_EQ(testing::runShell(render + " --threads 2 --out " + (dir / "crypto2.exr").string() + quiet), 0);
-    // The box white, everything else black, unlit (ambient 1, no lights), in float: the same seed gives
-    // the same samples, so each pixel's R is the fraction of its samples that hit the box.
-    ASSERT_EQ(testing::runShell(render + " --set materials.1.color=1 --set materials.0.color=0 --set materials.2.color=0" +
-                  " --set ambient=1 --set 'lights=[]' --out " + (dir / "white.exr").string() + quiet),
+    std::string colours;
+    for (int m = 0; m < 4; ++m)
+        colours += " --set materials." + std::to_string(m) + ".color=" + (m == c.material ? "1" : "0");
+    ASSERT_EQ(testing::runShell(render + colours + " --set ambient=1 --set 'lights=[]' --out " +
+                                (dir / "white.exr").string() + quiet),
               0);
     const ExrPixels crypto = testing::readExrPixels(dir / "crypto.exr");
     const ExrPixels crypto2 = testing::readExrPixels(dir / "crypto2.exr");
     const ExrPixels white = testing::readExrPixels(dir / "white.exr");
     ASSERT_EQ(crypto.pixels, crypto2.pixels);  // bit for bit on 1 and 2 threads
 
-    const std::vector<float> box = decodeMatte(crypto, "CryptoObject", "box");
+    const std::vector<float> matte = decodeMatte(crypto, "CryptoObject", c.object);
     const int r = white.spec.channelindex("R");
     int partial = 0;
-    for (std::size_t i = 0; i < box.size(); ++i) {
-        // Both are (samples on the box) / 16 rounded to float once; 1e-6 allows the sums' rounding.
-        EXPECT_NEAR(box[i], white.at(r, i), 1e-6f) << i;
-        if (box[i] > 0.0f && box[i] < 1.0f) ++partial;
+    for (std::size_t i = 0; i < matte.size(); ++i) {
+        EXPECT_NEAR(matte[i], white.at(r, i), 1e-6f) << i;
+        if (matte[i] > 0.0f && matte[i] < 1.0f) ++partial;
     }
-    EXPECT_GT(partial, 10);  // the turning box's blurred edges are in the test
+    EXPECT_GT(partial, 10);  // the object's blurred edges are in the test
 
-    // Every pixel's coverages sum to its alpha: three objects fit in depth 6.
+    // Every pixel's coverages sum to its alpha: four objects fit in depth 6.
     const int alpha = crypto.spec.channelindex("A");
-    std::vector<float> sum(box.size(), 0.0f);
-    for (const char* object : {"ball", "box", "floor"}) {
+    std::vector<float> sum(matte.size(), 0.0f);
+    for (const char* object : {"ball", "box", "floor", "wall"}) {
         const std::vector<float> m = decodeMatte(crypto, "CryptoObject", object);
         for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += m[i];
     }
     for (std::size_t i = 0; i < sum.size(); ++i) EXPECT_NEAR(sum[i], crypto.at(alpha, i), 1e-6f) << i;
 }
+
+// The turning box under the stochastic renderer; the translating ball under every clipped method:
+// point subframes (re-clips), sweep (swept fragments), accumulation and the frame-0 ablation (no blur:
+// only its edges are partial); the box under subframes (its turn splits the shutter into segments);
+// under sweep the wall, much of it a still backdrop (8 px tiles, so some tiles hold no floor). A fixed
+// subframe count keeps the renders short; the mattes follow the colour whatever the count.
+INSTANTIATE_TEST_SUITE_P(
+    Methods, CryptomatteRender,
+    ::testing::Values(MatteCase{"Stochastic", "{method: stochastic, samples: 16, seed: 5}", "box", 1},
+                      MatteCase{"Clipped", "{method: clipped, subframes: 16, tile_size: 8}", "ball", 0},
+                      MatteCase{"ClippedBox", "{method: clipped, subframes: 16, tile_size: 8}", "box", 1},
+                      MatteCase{"Sweep", "{method: clipped, time_integration: sweep, subframes: 16, tile_size: 8}", "ball", 0},
+                      MatteCase{"SweepBackdrop", "{method: clipped, time_integration: sweep, subframes: 16, tile_size: 8}",
+                                "wall", 3},
+                      MatteCase{"Accumulation", "{method: accumulation, samples: 8}", "ball", 0},
+                      MatteCase{"Frame0Only", "{method: frame0_only}", "ball", 0}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace clipblur

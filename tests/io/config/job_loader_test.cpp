@@ -205,6 +205,12 @@ TEST(JobLoader, OutputCompressionBackgroundAndCryptomatte) {
     EXPECT_EQ(plain.output.compression, ExrCompression::Zip);
     EXPECT_EQ(plain.output.background, BackgroundMode::Separate);
     EXPECT_FALSE(plain.output.cryptomatte.enabled);
+    // Every method writes ID mattes (the clipped ones from their fragments' objects).
+    for (const char* method : {"clipped", "accumulation", "frame0_only"}) {
+        const RenderJob clipped = loadJobFromText(
+            minimalYaml(std::string("render: {method: ") + method + "}\noutput: {cryptomatte: {}}\n"), "m.yaml");
+        EXPECT_TRUE(clipped.output.cryptomatte.enabled) << method;
+    }
 }
 
 TEST(JobLoader, DefaultsWhenOptionalSectionsAreAbsent) {
@@ -293,7 +299,6 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"BadBackground", "e.yaml", minimalYaml("output: {background: sky}\n"), ExitCode::Config, "sky", "one of separate"},
         ErrorCase{"CryptomatteWithDwaa", "e.yaml", minimalYaml("render: {method: stochastic}\noutput: {compression: dwaa, cryptomatte: {}}\n"),
                   ExitCode::Config, "dwaa", "corrupt Cryptomatte"},
-        ErrorCase{"CryptomatteNeedsStochastic", "e.yaml", minimalYaml("output: {cryptomatte: {depth: 4}}\n"), ExitCode::Config, "{depth: 4}", "stochastic"},
         ErrorCase{"CryptomatteLayerName", "e.yaml", minimalYaml("render: {method: stochastic}\noutput: {cryptomatte: {name: a.b}}\n"),
                   ExitCode::Config, "a.b", "A-Z"},
         ErrorCase{"LightKeyOfOtherType", "e.yaml", minimalYaml("lights: [{type: point, position: [0, 0, 0], direction: [0, 0, 1]}]\n"), ExitCode::Config, "direction", "unknown key 'lights[0].direction'"}),
