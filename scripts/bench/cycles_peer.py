@@ -34,8 +34,10 @@ How the scene follows clipblur's conventions (docs/performance.md, "Cycles as a 
   extension is not in clipblur's path, which holds after the last key: Cycles' times past close are
   what the fix assumes it (almost) never draws. --no-shutter-fix turns it off.
 - Film: Box filter 1 px, Standard view transform, no look, no denoising, no adaptive sampling, fixed
-  seed, max bounces 0 (direct light only), background = world colour seen by camera rays only (Light
-  Path "Is Camera Ray", world not sampled as a light), film not transparent. Objects are visible to
+  seed, max bounces 0 (direct light only), film transparent and the world black: RGBA premultiplied
+  with no background in the colour, as clipblur writes its EXR (docs/config.md, "What the EXR holds"),
+  so RGB compares directly (baking film.background in here only would differ by (1 - A) x background
+  at every blurred edge). Objects are visible to
   camera and shadow rays only and no material is sampled as a light, so the ambient emission lights
   nothing (see the object loop).
 - Shading: albedo is clipblur's checker/stripe built from math nodes on the rest-mesh position, a point
@@ -392,7 +394,7 @@ def _blender_main(argv):
     bs.render.resolution_x, bs.render.resolution_y = film["width"], film["height"]
     bs.render.resolution_percentage = 100
     bs.render.pixel_aspect_x = bs.render.pixel_aspect_y = 1.0
-    bs.render.film_transparent = False
+    bs.render.film_transparent = True  # premultiplied RGBA, as clipblur's EXR
     bs.view_settings.view_transform = "Standard"
     bs.view_settings.look = "None"
     bs.view_settings.exposure = 0.0
@@ -420,24 +422,17 @@ def _blender_main(argv):
         bs.render.motion_blur_shutter = blender_length
     cy.motion_blur_position = "START"
 
-    # World: the film background, seen by camera rays only (it lights nothing, as in clipblur).
+    # World: black, so it lights nothing (as in clipblur); the transparent film leaves it out of the
+    # colour where camera rays miss, and film.background is for the compositor, as in clipblur's EXR.
     world = bpy.data.worlds.new("clipblur_world")
     bs.world = world
     world.use_nodes = True
     wt = world.node_tree
     wt.nodes.clear()
-    bg = wt.nodes.new("ShaderNodeBackground")
-    bg.inputs["Color"].default_value = list(film["background"]) + [1.0]
-    bg.inputs["Strength"].default_value = 1.0
     black = wt.nodes.new("ShaderNodeBackground")
     black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-    path = wt.nodes.new("ShaderNodeLightPath")
-    mix = wt.nodes.new("ShaderNodeMixShader")
-    wt.links.new(path.outputs["Is Camera Ray"], mix.inputs["Fac"])
-    wt.links.new(black.outputs[0], mix.inputs[1])
-    wt.links.new(bg.outputs[0], mix.inputs[2])
     wout = wt.nodes.new("ShaderNodeOutputWorld")
-    wt.links.new(mix.outputs[0], wout.inputs["Surface"])
+    wt.links.new(black.outputs[0], wout.inputs["Surface"])
     world.cycles.sampling_method = "NONE"
 
     # Camera.
