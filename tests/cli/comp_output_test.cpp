@@ -144,4 +144,49 @@ TEST(CompOutput, ForwardVectorsHeaderAndStats) {
     EXPECT_EQ(j.at("start_time").get<std::string>().size(), std::string("2026-11-25T01:17:28Z").size());
 }
 
+// OpenEXR's own reader (exrheader, Debian openexr) sees the channels with their types and the header
+// attributes a compositor looks for, independently of OpenImageIO which wrote them.
+TEST(CompOutput, ExrheaderReadsChannelsTypesAndMetadata) {
+    const fs::path dir = testing::freshTempDir("clipblur_comp_exrheader");
+    const std::string job = std::string(kCamera) + kMoving;
+    ASSERT_EQ(render(dir, "frame", job,
+                     "--set output.compression=piz --set frames.fps=23.976023976023978 "
+                     "--set 'output.cryptomatte={name: CryptoObject, depth: 2}'"),
+              0);
+    const fs::path listing = dir / "exrheader.txt";
+    ASSERT_EQ(testing::runShell("exrheader " + (dir / "frame.exr").string() + " > " + listing.string() + " 2>&1"), 0)
+        << "exrheader (Debian openexr, scripts/setup.sh) must be installed";
+    std::ifstream in(listing);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const char* expected[] = {
+        "    A, 16-bit floating-point, sampling 1 1\n",
+        "    B, 16-bit floating-point, sampling 1 1\n",
+        "    CryptoObject00.A, 32-bit floating-point, sampling 1 1\n",
+        "    CryptoObject00.R, 32-bit floating-point, sampling 1 1\n",
+        "    G, 16-bit floating-point, sampling 1 1\n",
+        "    R, 16-bit floating-point, sampling 1 1\n",
+        "    Z, 32-bit floating-point, sampling 1 1\n",
+        "    forward.u, 32-bit floating-point, sampling 1 1\n",
+        "    forward.v, 32-bit floating-point, sampling 1 1\n",
+        "compression (type compression): piz\n",
+        "framesPerSecond (type rational): 24000/1001",
+        "chromaticities (type chromaticities):\n    red   (0.64 0.33)\n    green (0.3 0.6)\n    blue  (0.15 0.06)\n"
+        "    white (0.3127 0.329)\n",
+        "worldToCamera (type m44f):\n",
+        "worldToNDC (type m44f):\n",
+        "expTime (type float): 0.0208542\n",  // half a frame at 24000/1001 fps
+        "clipblur:frame (type int): 0\n",
+        "clipblur:shutterClose (type float): 0.5\n",
+        "clipblur:configHash (type string): \"",
+        "cryptomatte/3ae39a5/name (type string): \"CryptoObject\"\n",
+        "cryptomatte/3ae39a5/hash (type string): \"MurmurHash3_32\"\n",
+        "cryptomatte/3ae39a5/conversion (type string): \"uint32_to_float32\"\n",
+        "cryptomatte/3ae39a5/manifest (type string): \"{\"card\":\"",
+    };
+    for (const char* line : expected) EXPECT_NE(text.find(line), std::string::npos) << line << "\nin:\n" << text;
+    EXPECT_EQ(text.find("motion.x"), std::string::npos);
+    EXPECT_EQ(text.find("CryptoObject01"), std::string::npos);  // depth 2: one layer
+    EXPECT_NE(text.find("Software (type string): \"clipblur "), std::string::npos);
+}
+
 }  // namespace clipblur
