@@ -300,18 +300,19 @@ TEST(JobLoader, LargestFilmIsAccepted) {
     EXPECT_EQ(static_cast<long long>(job.scene.film.width) * job.scene.film.height, 1ll << 28);
 }
 
-TEST(JobLoader, AbsurdObjCoordinateIsASceneErrorAtTheObject) {
+TEST(JobLoader, AbsurdObjCoordinateIsASceneErrorInTheObjFile) {
     const auto dir = testDir();
-    // tinyobjloader reads "nan" as 0, so overflow (1e400 -> inf) and |x| > 1e8 are what an OBJ can carry.
+    // Located in the OBJ file, naming where the job refers to it.
     writeFile(dir / "inf.obj", "v 0 0 0\nv 1e400 0 0\nv 0 1 0\nf 1 2 3\n");
     writeFile(dir / "far.obj", "v 0 0 0\nv 2e8 0 0\nv 0 1 0\nf 1 2 3\n");
-    for (const char* obj : {"inf.obj", "far.obj"}) {
+    writeFile(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+    for (const char* obj : {"inf.obj", "far.obj", "nan.obj"}) {
         const auto job = writeFile(dir / "j.yaml", "version: 1\ncamera: {keys: [{}]}\nobjects:\n  - name: bad\n    obj: " +
                                                        std::string(obj) + "\n");
         const Error e = catchError([&] { loadJob(job); });
         EXPECT_EQ(e.code(), ExitCode::Scene) << e.what();
-        EXPECT_EQ(e.loc().line, 4) << e.what();
-        EXPECT_EQ(e.loc().column, 5) << e.what();
+        EXPECT_EQ(e.loc().toString(), (dir / obj).string() + ":2:3") << e.what();
+        EXPECT_NE(e.message().find((dir / "j.yaml").string() + ":5:10"), std::string::npos) << e.what();
     }
 }
 
