@@ -7,7 +7,6 @@
 #include <OpenImageIO/imageio.h>
 
 #include "clipblur/version.h"
-#include "io/atomic_file.h"
 #include "io/shard.h"
 #include "scene/error.h"
 
@@ -36,7 +35,14 @@ void writeWith(const std::filesystem::path& file, const OIIO::ImageSpec& spec, c
 }  // namespace
 
 void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata, bool half) {
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+    AtomicFileGroup group;
+    writeExr(group, path, image, metadata, half);
+    group.commit();
+}
+
+void writeExr(AtomicFileGroup& group, const std::filesystem::path& path, const Image& image,
+              const ImageMetadata& metadata, bool half) {
+    group.write(path, [&](const std::filesystem::path& temporary) {
         // Checked inside the atomic write so a bad image can never replace a good file.
         checkImage(image);
         const int nc = static_cast<int>(image.channels.size());
@@ -89,7 +95,13 @@ std::uint8_t encodeSrgb8(float linear) {
 }
 
 void writePngPreview(const std::filesystem::path& path, const Image& image) {
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+    AtomicFileGroup group;
+    writePngPreview(group, path, image);
+    group.commit();
+}
+
+void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, const Image& image) {
+    group.write(path, [&](const std::filesystem::path& temporary) {
         checkImage(image);
         const Image::Channel* rgb[3] = {image.find("R"), image.find("G"), image.find("B")};
         for (const auto* c : rgb)

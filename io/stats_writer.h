@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.h"
 #include "renderer/image.h"
 
 namespace clipblur {
@@ -16,7 +17,9 @@ long long peakMemoryBytes();
 // s}, "counts": {...}, "info": {...}}.
 nlohmann::json statsToJson(const RenderStats& stats, int frame, const std::string& image_path, int threads);
 
-// Writes the JSON (indented, keys sorted) atomically. Throws Error(ExitCode::Output).
+// Writes the JSON (indented, keys sorted) atomically, alone or as part of `group`. Throws
+// Error(ExitCode::Output).
 void writeStats(const std::filesystem::path& path, const nlohmann::json& stats);
+void writeStats(AtomicFileGroup& group, const std::filesystem::path& path, const nlohmann::json& stats);
 
 }  // namespace clipblur
