@@ -233,7 +233,7 @@ Action addRenderCommand(CLI::App& app) {
     sub->add_option("job", opts->job, "Job file (.yaml, .yml or .json)")->required();
     sub->add_option("--set", opts->overrides, "Override a setting: key.path=value (repeatable)")
         ->allow_extra_args(false);
-    sub->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+    sub->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::Range(0, kMaxThreads));
     sub->add_option("--frames", opts->frames, "Frame range A-B (or one frame A), overriding the job's");
     sub->add_option("--out", opts->out, "Output image path; #### is replaced by the zero-padded frame");
     sub->add_option("--stats", opts->stats, "Stats JSON path (default: beside the image); #### allowed");
