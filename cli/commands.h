@@ -17,10 +17,12 @@ Action addValidateCommand(CLI::App& app);
 Action addPathsCommand(CLI::App& app);
 
 // `clipblur render JOB [--set k=v]... [--threads N] [--frames A-B] [--out PATH] [--stats PATH]
-// [--progress auto|bar|lines|none] [--tile I/N]`: renders every frame to OpenEXR (plus stats JSON and an
-// optional PNG preview). With --tile only shard I of N is rendered, into the frame's shard path with its
-// data window, and a shard already complete is skipped. SIGINT/SIGTERM stop at the next tile without
-// writing the frame; exit code 130.
+// [--progress auto|bar|lines|none] [--tile I/N] [--reference REF] [--resume]`: renders every frame to
+// OpenEXR (plus stats JSON and an optional PNG preview), a frame's files moved into place together. Every
+// output path is checked before rendering (exit 5). With --tile only shard I of N is rendered, into the
+// frame's shard path with its data window, and a shard already complete is skipped; --resume skips
+// complete whole frames alike. SIGINT/SIGTERM, while loading or rendering, stop without writing the
+// frame; exit code 130.
 Action addRenderCommand(CLI::App& app);
 
 // `clipblur scene-json JOB [--set key=value]...`: prints the loaded, expanded scene as JSON

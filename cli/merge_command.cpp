@@ -96,10 +96,10 @@ Action addMergeCommand(CLI::App& app) {
     sub->add_option("--set", options->overrides, "Override a job value, key.path=value (as given to render)");
     sub->add_option("--out", options->out, "Frame path pattern, '#' runs become the frame number");
     sub->add_option("--frames", options->frames, "Frame range A-B (default: the job's)");
-    sub->add_option("--tiles", options->tiles, "Number of shards per frame")->required()->check(CLI::PositiveNumber);
+    sub->add_option("--tiles", options->tiles, "Number of shards per frame")->required()->check(CLI::Range(1, kMaxShards));
     sub->add_flag("--check", options->check, "Only report missing shards; exit 0 when nothing is missing, 5 else");
     sub->add_option("--shard", options->shard, "With --check: look at this shard index only")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, kMaxShards - 1));
     return [options]() {
         const MergeOptions& o = *options;
         if (o.shard >= 0 && !o.check) throw Error(ExitCode::Usage, "--shard only goes with --check");

@@ -10,6 +10,7 @@
 #include "io/exr_merge.h"
 #include "io/frame_path.h"
 #include "io/job_loader.h"
+#include "io/shard.h"
 #include "io/slurm_script.h"
 #include "scene/error.h"
 
@@ -143,10 +144,10 @@ Action addSubmitCommand(CLI::App& app) {
     sub->add_option("--set", options->overrides, "Override a job value, key.path=value (passed to every node)");
     sub->add_option("--engine", options->engine, "Scheduler: slurm")->required();
     sub->add_option("--frames", options->frames, "Frame range A-B (default: the job's)");
-    sub->add_option("--tiles", options->tiles, "Shards per frame")->check(CLI::PositiveNumber);
+    sub->add_option("--tiles", options->tiles, "Shards per frame")->check(CLI::Range(1, kMaxShards));
     sub->add_option("--partition", options->partition, "Slurm partition (default: the cluster's)");
     sub->add_option("--cpus-per-task", options->cpus_per_task, "CPUs per element, also render --threads")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, kMaxThreads));
     sub->add_option("--binary", options->binary, "clipblur as the nodes see it (default: this binary)");
     sub->add_flag("--dry-run", options->dry_run, "Print the scripts, submit nothing");
     sub->add_flag("--wait", options->wait, "Return when the merge job ends, with its success or failure");

@@ -2,13 +2,37 @@
 
 #include <filesystem>
 #include <functional>
+#include <vector>
 
 namespace clipblur {
 
-// Writes `target` all or nothing: `write` fills a temporary file in the same folder, which is renamed
-// over the target only if `write` returns normally. On any failure the temporary is removed, the previous
-// target is untouched and a clipblur::Error (ExitCode::Output) is thrown.
-void writeAtomically(const std::filesystem::path& target,
-                     const std::function<void(const std::filesystem::path& temporary)>& write);
+// Several files replaced as one: write() fills a temporary beside each target, and commit() renames
+// them over their targets, in the order written, only once every write has succeeded. A failed write
+// throws and a group destroyed uncommitted removes its temporaries, so the previous targets are all
+// untouched. commit() first refuses targets that became folders, the one rename failure a pre-render
+// check of the output paths cannot rule out for good; a rename failing after that (the disk itself)
+// leaves the files already renamed in place. Errors are clipblur::Error (ExitCode::Output).
+class AtomicFileGroup {
+public:
+    using Writer = std::function<void(const std::filesystem::path& temporary)>;
+
+    AtomicFileGroup() = default;
+    AtomicFileGroup(const AtomicFileGroup&) = delete;
+    AtomicFileGroup& operator=(const AtomicFileGroup&) = delete;
+    ~AtomicFileGroup();
+
+    void write(const std::filesystem::path& target, const Writer& write);
+    void commit();
+
+private:
+    struct Pending {
+        std::filesystem::path target;
+        std::filesystem::path temporary;
+    };
+    std::vector<Pending> pending_;
+};
+
+// One file written all or nothing: a group of one, committed.
+void writeAtomically(const std::filesystem::path& target, const AtomicFileGroup::Writer& write);
 
 }  // namespace clipblur

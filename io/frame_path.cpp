@@ -3,6 +3,7 @@
 #include <charconv>
 #include <filesystem>
 
+#include "io/config/job_schema.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -57,13 +58,19 @@ FrameRange parseFrameRange(std::string_view text) {
     if (r.ec != std::errc()) throw usage("not an integer");
     if (r.ptr == end) {
         range.last = range.first;
-        return range;
+    } else {
+        if (*r.ptr != '-') throw usage("not an integer");
+        r = std::from_chars(r.ptr + 1, end, range.last);
+        if (r.ec == std::errc::result_out_of_range) throw usage("frame number out of range");
+        if (r.ec != std::errc() || r.ptr != end) throw usage("not two integers");
+        if (range.last < range.first) throw usage("last frame before first");
     }
-    if (*r.ptr != '-') throw usage("not an integer");
-    r = std::from_chars(r.ptr + 1, end, range.last);
-    if (r.ec == std::errc::result_out_of_range) throw usage("frame number out of range");
-    if (r.ec != std::errc() || r.ptr != end) throw usage("not two integers");
-    if (range.last < range.first) throw usage("last frame before first");
+    // The job schema's limits (docs/config.md), which also keep a frame loop's `int` from overflowing.
+    if (range.first < -config::kMaxFrameCount || range.last > config::kMaxFrameCount)
+        throw usage("frame numbers must be within -" + std::to_string(config::kMaxFrameCount) + ".." +
+                    std::to_string(config::kMaxFrameCount));
+    if (static_cast<long long>(range.last) - range.first >= config::kMaxFrameCount)
+        throw usage("more than " + std::to_string(config::kMaxFrameCount) + " frames");
     return range;
 }
 

@@ -7,7 +7,6 @@
 #include <OpenImageIO/imageio.h>
 
 #include "clipblur/version.h"
-#include "io/atomic_file.h"
 #include "io/shard.h"
 #include "scene/error.h"
 
@@ -112,7 +111,14 @@ const char* compressionName(ExrCompression compression) {
 
 void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata,
               const ExrFormat& format) {
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+    AtomicFileGroup group;
+    writeExr(group, path, image, metadata, format);
+    group.commit();
+}
+
+void writeExr(AtomicFileGroup& group, const std::filesystem::path& path, const Image& image,
+              const ImageMetadata& metadata, const ExrFormat& format) {
+    group.write(path, [&](const std::filesystem::path& temporary) {
         // Checked inside the atomic write so a bad image can never replace a good file.
         checkImage(image);
         OIIO::ImageSpec spec = exrSpec(image, format);
@@ -138,7 +144,14 @@ std::uint8_t encodeSrgb8(float linear) {
 }
 
 void writePngPreview(const std::filesystem::path& path, const Image& image, const glm::dvec3& background) {
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+    AtomicFileGroup group;
+    writePngPreview(group, path, image, background);
+    group.commit();
+}
+
+void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, const Image& image,
+                     const glm::dvec3& background) {
+    group.write(path, [&](const std::filesystem::path& temporary) {
         checkImage(image);
         const Image::Channel* rgb[3] = {image.find("R"), image.find("G"), image.find("B")};
         const Image::Channel* alpha = image.find("A");

@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "io/atomic_file.h"
 #include "io/exr_frame_header.h"
 #include "renderer/image.h"
 #include "scene/job.h"
@@ -43,11 +44,16 @@ const char* compressionName(ExrCompression compression);
 // atomically. Throws Error(ExitCode::Output).
 void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata,
               const ExrFormat& format);
+// The same as part of `group`: in place only when the group commits.
+void writeExr(AtomicFileGroup& group, const std::filesystem::path& path, const Image& image,
+              const ImageMetadata& metadata, const ExrFormat& format);
 
 // 8-bit sRGB-encoded RGB PNG of the display window (zero outside the data window), written atomically:
 // the premultiplied colour over `background` (RGB + (1 - A) background). RGB only, as a preview is
 // looked at, not composited.
 void writePngPreview(const std::filesystem::path& path, const Image& image, const glm::dvec3& background);
+void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, const Image& image,
+                     const glm::dvec3& background);
 
 // sRGB transfer function (IEC 61966-2-1) of a linear value clamped to [0, 1], as 0..255.
 std::uint8_t encodeSrgb8(float linear);

@@ -26,7 +26,7 @@ Mesh buildMesh(const MeshSource& src, const std::filesystem::path& base, std::ui
 }
 
 RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
-                const std::vector<std::string>& overrides) {
+                const std::vector<std::string>& overrides, std::vector<std::filesystem::path>* read_files) {
     for (const std::string& o : overrides) config::applyOverride(document, o);
     config::JobDescription desc = config::readJobDescription(document);
     RenderJob job = std::move(desc.job);
@@ -40,9 +40,11 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
         Object& object = job.scene.objects[i];
         const std::uint64_t budget = std::min(config::kMaxTrianglesPerObject, config::kMaxTotalTriangles - total);
         object.mesh = buildMesh(src, base, budget);
+        if (read_files && src.kind == MeshSource::Kind::Obj) read_files->push_back(base / src.obj_path);
         total += object.mesh.triangles.size();
         for (const MeshSource::Deformation& d : src.deformation) {
             Mesh key = loadObjMesh(base / d.obj_path, d.loc, config::kMaxTrianglesPerObject);
+            if (read_files) read_files->push_back(base / d.obj_path);
             if (key.positions.size() != object.mesh.positions.size() || key.triangles != object.mesh.triangles)
                 throwSceneError(d.loc, "deformation key '" + d.obj_path + "' does not have the topology of " +
                                            "object '" + object.name + "' (" + std::to_string(key.positions.size()) +
@@ -58,13 +60,15 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
 
 }  // namespace
 
-RenderJob loadJob(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-    return build(config::readDocument(file), file, overrides);
+RenderJob loadJob(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                  std::vector<std::filesystem::path>* read_files) {
+    if (read_files) read_files->push_back(file);
+    return build(config::readDocument(file), file, overrides, read_files);
 }
 
 RenderJob loadJobFromText(const std::string& text, const std::filesystem::path& file_name,
                           const std::vector<std::string>& overrides) {
-    return build(config::parseDocument(text, file_name.string()), file_name, overrides);
+    return build(config::parseDocument(text, file_name.string()), file_name, overrides, nullptr);
 }
 
 }  // namespace clipblur

@@ -12,10 +12,10 @@ namespace clipblur {
 
 ReferenceImage readReference(const std::string& path, int width, int height) {
     auto in = OIIO::ImageInput::open(path);
-    if (!in) throw Error(ExitCode::Usage, "cannot read reference image " + path + ": " + OIIO::geterror());
+    if (!in) throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.full_width != width || spec.full_height != height)
-        throw Error(ExitCode::Usage, "reference image " + path + " is " + std::to_string(spec.full_width) + "x" +
+        throw Error(ExitCode::Config, "reference image " + path + " is " + std::to_string(spec.full_width) + "x" +
                                          std::to_string(spec.full_height) + ", the render is " +
                                          std::to_string(width) + "x" + std::to_string(height));
     std::array<int, 3> channel{-1, -1, -1};
@@ -26,10 +26,10 @@ ReferenceImage readReference(const std::string& path, int width, int height) {
         if (name == "B") channel[2] = c;
     }
     if (std::find(channel.begin(), channel.end(), -1) != channel.end())
-        throw Error(ExitCode::Usage, "reference image " + path + " lacks an R, G or B channel");
+        throw Error(ExitCode::Config, "reference image " + path + " lacks an R, G or B channel");
     std::vector<float> all(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeFloat, all.data()))
-        throw Error(ExitCode::Usage, "cannot read reference image " + path + ": " + in->geterror());
+        throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + in->geterror());
     // Pixels outside the reference's data window are black (the EXR convention).
     ReferenceImage ref{width, height, std::vector<float>(static_cast<std::size_t>(width) * height * 3, 0.0f)};
     for (int y = 0; y < spec.height; ++y) {

@@ -16,7 +16,7 @@ struct ReferenceError {
     long long pixels = 0;
 };
 
-// The reference's R, G, B as float over its full display window, row-major. Throws Error(Usage) when
+// The reference's R, G, B as float over its full display window, row-major. Throws Error(Config) when
 // the file cannot be read, lacks R, G or B, or its display window is not width x height.
 struct ReferenceImage {
     int width = 0;

@@ -28,9 +28,10 @@ TileShard parseTileShard(std::string_view text) {
     const std::size_t slash = text.find('/');
     if (slash == std::string_view::npos) throw usage("no '/'");
     TileShard shard;
+    const std::string counts = "1.." + std::to_string(kMaxShards);
     if (!parseInt(text.substr(0, slash), shard.index)) throw usage("index is not an integer");
-    if (!parseInt(text.substr(slash + 1), shard.count)) throw usage("count is not an integer");
-    if (shard.count < 1) throw usage("count must be at least 1");
+    if (!parseInt(text.substr(slash + 1), shard.count)) throw usage("count is not an integer in " + counts);
+    if (shard.count < 1 || shard.count > kMaxShards) throw usage("count must be in " + counts);
     if (shard.index < 0 || shard.index >= shard.count) throw usage("index out of range");
     return shard;
 }

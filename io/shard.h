@@ -10,6 +10,12 @@
 namespace clipblur {
 
 // Shard `index` of `count` equal-ish parts of one frame, as given to `render --tile I/N`.
+// Shards per frame (--tile, --tiles): far more than any farm splits a frame into, and small enough that
+// a shard's bookkeeping never matters beside its render.
+inline constexpr int kMaxShards = 65536;
+// Worker threads a command accepts (--threads, --cpus-per-task).
+inline constexpr int kMaxThreads = 4096;
+
 struct TileShard {
     int index = 0;
     int count = 1;

@@ -41,7 +41,13 @@ std::string utcTimestamp(std::chrono::system_clock::time_point time) {
 }
 
 void writeStats(const std::filesystem::path& path, const nlohmann::json& stats) {
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+    AtomicFileGroup group;
+    writeStats(group, path, stats);
+    group.commit();
+}
+
+void writeStats(AtomicFileGroup& group, const std::filesystem::path& path, const nlohmann::json& stats) {
+    group.write(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary);
         out << stats.dump(2) << "\n";
         out.close();

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.h"
 #include "renderer/image.h"
 
 namespace clipblur {
@@ -29,7 +30,9 @@ nlohmann::json statsToJson(const RenderStats& stats, const StatsContext& context
 // `time` as UTC ISO 8601 to the second, e.g. 2026-11-25T01:17:28Z.
 std::string utcTimestamp(std::chrono::system_clock::time_point time);
 
-// Writes the JSON (indented, keys sorted) atomically. Throws Error(ExitCode::Output).
+// Writes the JSON (indented, keys sorted) atomically, alone or as part of `group`. Throws
+// Error(ExitCode::Output).
 void writeStats(const std::filesystem::path& path, const nlohmann::json& stats);
+void writeStats(AtomicFileGroup& group, const std::filesystem::path& path, const nlohmann::json& stats);
 
 }  // namespace clipblur

@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (ASan+UBSan) in build-fuzz and runs the job loader fuzzer for
-# a bounded time, seeded with the shipped configs. Usage: scripts/fuzz.sh [seconds, default 60]
+# Builds the libFuzzer targets with clang (ASan+UBSan) in build-fuzz and runs each for a bounded time,
+# the total split between them: the job loader seeded with the shipped configs, the OBJ loader with the
+# repo's .obj files. Usage: scripts/fuzz.sh [total seconds, default 60]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 CLIPBLUR_FUZZ=1 bash scripts/setup.sh
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DCLIPBLUR_FUZZ=ON -DCLIPBLUR_SANITIZE=ON -DCLIPBLUR_BENCH=OFF >/dev/null
-cmake --build build-fuzz --target job_loader_fuzz -j "${CLIPBLUR_JOBS:-$(nproc)}"
+cmake --build build-fuzz --target job_loader_fuzz obj_loader_fuzz -j "${CLIPBLUR_JOBS:-$(nproc)}"
 
 corpus=build-fuzz/corpus/job_loader
 mkdir -p "$corpus"
@@ -18,7 +19,15 @@ find configs \( -name '*.yaml' -o -name '*.json' \) ! -path '*/schema/*' ! -name
 # A JSON rendering of the demo job seeds the JSON side too.
 cp tests/fuzz/seeds/*.json "$corpus/" 2>/dev/null || true
 
+obj_corpus=build-fuzz/corpus/obj_loader
+mkdir -p "$obj_corpus"
+find configs tests -name '*.obj' | while read -r f; do cp "$f" "$obj_corpus/"; done
+
 mkdir -p build-fuzz/artifacts
-ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  build-fuzz/tests/job_loader_fuzz "$corpus" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
-  -timeout=10 -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1
+run() {  # fuzzer, corpus, seconds
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    "build-fuzz/tests/$1" "$2" -max_total_time="$3" -max_len=65536 -rss_limit_mb=2048 \
+    -timeout=10 -artifact_prefix="build-fuzz/artifacts/$1-" -print_final_stats=1
+}
+run job_loader_fuzz "$corpus" $(( (seconds + 1) / 2 ))
+run obj_loader_fuzz "$obj_corpus" $(( seconds / 2 ))

@@ -10,5 +10,6 @@ ctest --test-dir build --output-on-failure -j "$(nproc)"
 bash scripts/build.sh sanitize
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE slow
-# The job loader under libFuzzer (clang, ASan+UBSan) for a bounded time, seeded from configs/.
+# The job and OBJ loaders under libFuzzer (clang, ASan+UBSan), the bounded time split between them,
+# seeded from configs/ and the repo's .obj files.
 bash scripts/fuzz.sh "${CLIPBLUR_FUZZ_SECONDS:-60}"

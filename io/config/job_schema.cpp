@@ -6,6 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "io/config/schema_reader.h"
+#include "scene/camera.h"
 #include "scene/primitives.h"
 #include "scene/scene_validation.h"
 
@@ -35,9 +36,6 @@ glm::dvec3 nonZeroDirection(MapReader& map, std::string_view key, glm::dvec3 fal
 void readFilm(MapReader map, Film& film) {
     film.width = map.integer("width", film.width, 1, kMaxImageSide);
     film.height = map.integer("height", film.height, 1, kMaxImageSide);
-    if (static_cast<std::int64_t>(film.width) * film.height > kMaxImagePixels)
-        throwConfigError(map.loc(), "film is " + std::to_string(film.width) + "x" + std::to_string(film.height) +
-                                        " pixels, more than the limit of 2^28");
     film.background = map.vec3("background", film.background, 0.0, kBig, true);
     map.finish();
 }
@@ -69,6 +67,12 @@ void readCamera(MapReader map, Camera& camera, std::vector<FileLoc>& key_locs) {
         key.view = nonZeroDirection(k, "view", key.view);
         key.up = nonZeroDirection(k, "up", key.up);
         k.finish();
+        // The camera basis's own test, so no key passes here that the scene check would refuse.
+        try {
+            makeCameraFrame(key.position, key.view, key.up, k.loc());
+        } catch (const Error& e) {
+            throwConfigError(e.loc(), "'" + k.path() + "': " + e.message());
+        }
         camera.keys.push_back(key);
         key_locs.push_back(k.loc());
     }

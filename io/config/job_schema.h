@@ -12,7 +12,6 @@ namespace clipblur::config {
 
 // Caps on what a job may ask for; checked while reading, before anything is allocated.
 inline constexpr int kMaxImageSide = 16384;
-inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
 inline constexpr int kMaxSamples = 1 << 16;
 inline constexpr int kMaxSubframes = 4096;
 inline constexpr int kMaxSegments = 256;

@@ -47,6 +47,8 @@ void applyOverride(ConfigNode& root, const std::string& assignment) {
         start = end + 1;
     }
 
+    if (assignment.find_first_not_of(" \t", eq + 1) == std::string::npos)
+        throwConfigError(setLoc(eq), "override '" + assignment + "' has no value after '='");
     ConfigNode value;
     try {
         value = readYaml(assignment.substr(eq + 1), kSetFile);
@@ -55,8 +57,9 @@ void applyOverride(ConfigNode& root, const std::string& assignment) {
         if (loc.line == 1) loc.column += static_cast<int>(eq + 1);
         throw Error(e.code(), e.message(), loc);
     }
-    if (value.loc.line == 0) value.loc = setLoc(eq + 1);
+    // yaml-cpp columns count from the value's start; a value it leaves unlocated starts there.
     shiftColumns(value, static_cast<int>(eq + 1));
+    if (value.loc.line == 0) value.loc = setLoc(eq + 1);
 
     if (!root.isMap()) throwConfigError(root.loc, "the document must be a map to apply overrides");
     ConfigNode* node = &root;

@@ -100,7 +100,7 @@ TEST(RenderCommand, ReferenceErrorGoesToTheStats) {
 
     const int status = std::system((job + common + " --out " + (dir / "d.exr").string() + " --reference " +
                                     (dir / "missing.exr").string() + quiet).c_str());
-    EXPECT_EQ(WEXITSTATUS(status), 2);
+    EXPECT_EQ(WEXITSTATUS(status), 3);
     EXPECT_FALSE(fs::exists(dir / "d.exr"));
 }
 

@@ -55,6 +55,23 @@ TEST(FramePath, RangesMayBeNegative) {
     }
 }
 
+// Issue 24, kind 3: --frames skipped the job's frame limits, and 2147483647 overflowed the frame loop.
+TEST(FramePath, RangesKeepTheJobsFrameLimits) {
+    EXPECT_EQ(parseFrameRange("-1000000").first, -1000000);
+    EXPECT_EQ(parseFrameRange("1000000").last, 1000000);
+    EXPECT_EQ(parseFrameRange("1-1000000").last, 1000000);
+    for (const char* bad : {"2147483647", "0-2147483647", "2147483646-2147483647", "-2147483648", "1000001",
+                            "-1000001--1000000", "0-1000000", "-500000-500000"}) {
+        try {
+            parseFrameRange(bad);
+            ADD_FAILURE() << "accepted \"" << bad << "\"";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ExitCode::Usage) << bad;
+            EXPECT_NE(e.message().find("1000000"), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
     RenderStats stats;
     stats.seconds["render"] = 0.5;

@@ -290,7 +290,7 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"UnsortedCameraKeys", "e.yaml", "version: 1\ncamera:\n  keys:\n    - {time: 1}\n    - {time: 0.5}\nobjects:\n" + kBox, ExitCode::Scene, "{time: 0.5}", "sorted"},
         ErrorCase{"UnsortedTransformKeys", "e.yaml", "version: 1\n" + kCam + "objects:\n  - primitive: {type: box}\n    transform:\n      - {time: 0}\n      - {time: 0, translate: [1, 0, 0]}\n",
                   ExitCode::Scene, "{time: 0, translate", "sorted"},
-        ErrorCase{"ViewParallelToUp", "e.yaml", "version: 1\ncamera:\n  keys:\n    - {view: [0, 2, 0], position: [0, 0, -5]}\nobjects:\n" + kBox, ExitCode::Scene, "{view", "parallel"},
+        ErrorCase{"ViewParallelToUp", "e.yaml", "version: 1\ncamera:\n  keys:\n    - {view: [0, 2, 0], position: [0, 0, -5]}\nobjects:\n" + kBox, ExitCode::Config, "{view", "parallel"},
         ErrorCase{"ZeroView", "e.yaml", "version: 1\ncamera:\n  keys:\n    - {view: [0, 0, 0]}\nobjects:\n" + kBox, ExitCode::Config, "[0, 0, 0]", "zero vector"},
         ErrorCase{"EmptyScene", "e.yaml", "version: 1\n" + kCam + "objects: []\n", ExitCode::Scene, "[]", "no objects"},
         ErrorCase{"MissingObj", "e.yaml", "version: 1\n" + kCam + "objects:\n  - obj: nowhere.obj\n", ExitCode::Scene, "nowhere.obj", "nowhere.obj"},
@@ -318,28 +318,29 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"DuplicateKey", "e.json", kJsonHead + kJsonBox + ",\n \"objects\": []}", ExitCode::Config, "\"objects\": []", "duplicate key"},
         ErrorCase{"Syntax", "e.json", kJsonHead + " \"objects\": @}", ExitCode::Config, "@", "JSON syntax error"},
         ErrorCase{"UnsortedCameraKeys", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"time\": 2},\n   {\"time\": 1}]},\n" + kJsonBox + "}", ExitCode::Scene, "{\"time\": 1}", "sorted"},
-        ErrorCase{"ViewParallelToUp", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"view\": [0, -1, 0]}]},\n" + kJsonBox + "}", ExitCode::Scene, "{\"view\"", "parallel"},
+        ErrorCase{"ViewParallelToUp", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"view\": [0, -1, 0]}]},\n" + kJsonBox + "}", ExitCode::Config, "{\"view\"", "parallel"},
         ErrorCase{"BoolAsString", "e.json", kJsonHead + " \"render\": {\"shadows\": \"true\"},\n" + kJsonBox + "}", ExitCode::Config, "\"true\"", "true or false"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(JobLoader, LargestFilmIsAccepted) {
-    // 16384 x 16384 is exactly 2^28 pixels: both caps are inclusive.
+    // Both side caps are inclusive; their product, 2^28 pixels, is the largest film.
     const RenderJob job = loadJobFromText(minimalYaml("film: {width: 16384, height: 16384}\n"), "big.yaml");
     EXPECT_EQ(static_cast<long long>(job.scene.film.width) * job.scene.film.height, 1ll << 28);
 }
 
-TEST(JobLoader, AbsurdObjCoordinateIsASceneErrorAtTheObject) {
+TEST(JobLoader, AbsurdObjCoordinateIsASceneErrorInTheObjFile) {
     const auto dir = testDir();
-    // tinyobjloader reads "nan" as 0, so overflow (1e400 -> inf) and |x| > 1e8 are what an OBJ can carry.
+    // Located in the OBJ file, naming where the job refers to it.
     writeFile(dir / "inf.obj", "v 0 0 0\nv 1e400 0 0\nv 0 1 0\nf 1 2 3\n");
     writeFile(dir / "far.obj", "v 0 0 0\nv 2e8 0 0\nv 0 1 0\nf 1 2 3\n");
-    for (const char* obj : {"inf.obj", "far.obj"}) {
+    writeFile(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+    for (const char* obj : {"inf.obj", "far.obj", "nan.obj"}) {
         const auto job = writeFile(dir / "j.yaml", "version: 1\ncamera: {keys: [{}]}\nobjects:\n  - name: bad\n    obj: " +
                                                        std::string(obj) + "\n");
         const Error e = catchError([&] { loadJob(job); });
         EXPECT_EQ(e.code(), ExitCode::Scene) << e.what();
-        EXPECT_EQ(e.loc().line, 4) << e.what();
-        EXPECT_EQ(e.loc().column, 5) << e.what();
+        EXPECT_EQ(e.loc().toString(), (dir / obj).string() + ":2:3") << e.what();
+        EXPECT_NE(e.message().find((dir / "j.yaml").string() + ":5:10"), std::string::npos) << e.what();
     }
 }
 

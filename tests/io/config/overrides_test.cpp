@@ -64,6 +64,33 @@ TEST(Overrides, BadPathsAreLocated) {
     EXPECT_EQ(e.loc().toString(), "<--set>:1:1");
 }
 
+// Issue 24, kind 6: an empty value was reported at a column past the end of the argument.
+TEST(Overrides, EmptyValueIsLocatedAtItsEqualsSign) {
+    for (const std::string assignment : {"render.samples=", "film.width=", "objects.1.name=  ", "a="}) {
+        SCOPED_TRACE(assignment);
+        ConfigNode doc = baseDoc();
+        const Error e = catchError([&] { applyOverride(doc, assignment); });
+        EXPECT_EQ(e.code(), ExitCode::Config);
+        EXPECT_EQ(e.loc().column, static_cast<int>(assignment.find('=')) + 1);
+        EXPECT_LE(e.loc().column, static_cast<int>(assignment.size()));
+        EXPECT_NE(e.message().find("has no value"), std::string::npos) << e.what();
+    }
+}
+
+// Every node of a value lies inside the argument, at its own first character.
+TEST(Overrides, ValueColumnsStayInsideTheArgument) {
+    ConfigNode doc = baseDoc();
+    applyOverride(doc, "render.samples=null");
+    EXPECT_EQ(doc.find("render")->find("samples")->loc.column, 16);
+    applyOverride(doc, "film.background=[1, 0.5, 0]");
+    const ConfigNode* bg = doc.find("film")->find("background");
+    EXPECT_EQ(bg->loc.column, 17);
+    ASSERT_EQ(bg->items.size(), 3u);
+    EXPECT_EQ(bg->items[1].loc.column, 21);
+    applyOverride(doc, "render.samples=''");
+    EXPECT_EQ(doc.find("render")->find("samples")->loc.column, 16);
+}
+
 TEST(Overrides, BadValueSyntaxIsLocated) {
     ConfigNode doc = baseDoc();
     const Error e = catchError([&] { applyOverride(doc, "render.samples=[1, 2"); });
