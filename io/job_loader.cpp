@@ -14,13 +14,14 @@ namespace {
 
 using config::MeshSource;
 
-Mesh buildMesh(const MeshSource& src, const std::filesystem::path& base, std::uint64_t budget) {
+// `faces` receives an OBJ mesh's faces as written (left empty for primitives).
+Mesh buildMesh(const MeshSource& src, const std::filesystem::path& base, std::uint64_t budget, ObjFaces& faces) {
     switch (src.kind) {
         case MeshSource::Kind::Quad: return makeQuad({src.size.x, src.size.y});
         case MeshSource::Kind::Grid: return makeGrid({src.size.x, src.size.y}, src.nx, src.nz);
         case MeshSource::Kind::Box: return makeBox(src.size);
         case MeshSource::Kind::Sphere: return makeSphere(0.5 * src.size.x, src.segments);
-        case MeshSource::Kind::Obj: return loadObjMesh(base / src.obj_path, src.loc, budget);
+        case MeshSource::Kind::Obj: return loadObjMesh(base / src.obj_path, src.loc, budget, &faces);
     }
     return {};
 }
@@ -39,13 +40,19 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
         const MeshSource& src = desc.meshes[i];
         Object& object = job.scene.objects[i];
         const std::uint64_t budget = std::min(config::kMaxTrianglesPerObject, config::kMaxTotalTriangles - total);
-        object.mesh = buildMesh(src, base, budget);
+        ObjFaces faces;
+        object.mesh = buildMesh(src, base, budget, faces);
         if (read_files && src.kind == MeshSource::Kind::Obj) read_files->push_back(base / src.obj_path);
         total += object.mesh.triangles.size();
         for (const MeshSource::Deformation& d : src.deformation) {
-            Mesh key = loadObjMesh(base / d.obj_path, d.loc, config::kMaxTrianglesPerObject);
+            ObjFaces key_faces;
+            Mesh key = loadObjMesh(base / d.obj_path, d.loc, config::kMaxTrianglesPerObject, &key_faces);
             if (read_files) read_files->push_back(base / d.obj_path);
-            if (key.positions.size() != object.mesh.positions.size() || key.triangles != object.mesh.triangles)
+            // Same faces, not same triangles: a quad bent non-convex at one key is split along its other
+            // diagonal there, yet it is the same surface; the object's triangulation holds at every key.
+            const bool same_faces = src.kind == MeshSource::Kind::Obj ? key_faces == faces
+                                                                       : key.triangles == object.mesh.triangles;
+            if (key.positions.size() != object.mesh.positions.size() || !same_faces)
                 throwSceneError(d.loc, "deformation key '" + d.obj_path + "' does not have the topology of " +
                                            "object '" + object.name + "' (" + std::to_string(key.positions.size()) +
                                            " vertices / " + std::to_string(key.triangles.size()) +

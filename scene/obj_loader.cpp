@@ -83,8 +83,13 @@ public:
         if (tokens_[0].text == "f") readFace();
     }
 
-    Mesh finish() {
+    Mesh finish(ObjFaces* faces) {
         if (faces_.empty()) throwSceneError(ref_, "OBJ file '" + name_ + "' has no faces");
+        if (faces) {
+            faces->indices = indices_;
+            faces->starts.clear();
+            for (const Face& f : faces_) faces->starts.push_back(f.start);
+        }
         mesh_.triangles.reserve(triangles_);
         for (std::size_t f = 0; f < faces_.size(); ++f) {
             const std::size_t end = f + 1 < faces_.size() ? faces_[f + 1].start : indices_.size();
@@ -198,13 +203,14 @@ std::size_t countVertices(const std::string& text) {
 }  // namespace
 
 Mesh parseObjMesh(const std::string& text, const std::string& name, const FileLoc& ref,
-                  std::uint64_t max_triangles) {
+                  std::uint64_t max_triangles, ObjFaces* faces) {
     ObjParser parser(name, ref, countVertices(text), max_triangles);
     forEachLine(text, [&](std::string_view line, int number) { parser.read(line, number); });
-    return parser.finish();
+    return parser.finish(faces);
 }
 
-Mesh loadObjMesh(const std::filesystem::path& file, const FileLoc& ref, std::uint64_t max_triangles) {
+Mesh loadObjMesh(const std::filesystem::path& file, const FileLoc& ref, std::uint64_t max_triangles,
+                 ObjFaces* faces) {
     const std::string name = file.string();
     std::error_code ec;
     const auto size = std::filesystem::file_size(file, ec);
@@ -214,7 +220,7 @@ Mesh loadObjMesh(const std::filesystem::path& file, const FileLoc& ref, std::uin
     std::ifstream in(file, std::ios::binary);
     if (!in) throwSceneError(ref, "cannot open OBJ file '" + name + "'");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return parseObjMesh(text, name, ref, max_triangles);
+    return parseObjMesh(text, name, ref, max_triangles, faces);
 }
 
 }  // namespace clipblur

@@ -1,10 +1,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "io/job_loader.h"
+#include "scene/obj_loader.h"
 #include "tests/io/config/config_test_util.h"
 
 namespace clipblur {
@@ -353,6 +355,39 @@ TEST(JobLoader, DeformationWithOtherTopologyIsRefused) {
     const Error e = catchError([&] { loadJob(job); });
     EXPECT_EQ(e.code(), ExitCode::Scene);
     EXPECT_EQ(e.loc().toString(), (dir / "j.yaml").string() + ":6:24");
+    EXPECT_NE(e.message().find("topology"), std::string::npos);
+}
+
+// A quad bent non-convex at a key is split along the diagonal its shape needs there, yet it is the same
+// face: the key is accepted and moves the object's own triangles (found with the bench's bending limbs).
+TEST(JobLoader, DeformationKeyWithTheSameFacesSplitOtherwiseIsAccepted) {
+    const auto dir = testDir();
+    const std::string square = "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n";
+    // Vertex 1, then vertex 2, pushed inwards: each dart admits one diagonal only, so one of them
+    // differs from the square's split whichever diagonal that takes.
+    const std::vector<std::string> darts{"v 1.5 1.5 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n",
+                                         "v 0 0 0\nv 0.8 1 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n"};
+    const Mesh base = parseObjMesh(square, "square.obj", FileLoc{}, 16);
+    int split_otherwise = 0;
+    for (std::size_t k = 0; k < darts.size(); ++k) {
+        SCOPED_TRACE(darts[k]);
+        split_otherwise += parseObjMesh(darts[k], "dart.obj", FileLoc{}, 16).triangles != base.triangles;
+        writeFile(dir / "square.obj", square);
+        writeFile(dir / "dart.obj", darts[k]);
+        const auto job = writeFile(dir / "j.yaml", "version: 1\ncamera: {keys: [{}]}\nobjects:\n  - obj: square.obj\n"
+                                                   "    deformation:\n      - {time: 0, obj: square.obj}\n"
+                                                   "      - {time: 1, obj: dart.obj}\n");
+        const RenderJob loaded = loadJob(job);
+        const Object& object = loaded.scene.objects.at(0);
+        EXPECT_EQ(object.mesh.triangles, base.triangles);
+        ASSERT_EQ(object.deformation.size(), 2u);
+        EXPECT_EQ(object.deformation[1].positions, parseObjMesh(darts[k], "dart.obj", FileLoc{}, 16).positions);
+    }
+    EXPECT_GE(split_otherwise, 1) << "neither key exercises a different split";
+    // Other faces are still another topology, though the triangle count matches.
+    writeFile(dir / "dart.obj", "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 2 3 4 1\n");
+    const Error e = catchError([&] { loadJob(dir / "j.yaml"); });
+    EXPECT_EQ(e.code(), ExitCode::Scene);
     EXPECT_NE(e.message().find("topology"), std::string::npos);
 }
 
