@@ -1,8 +1,5 @@
 #pragma once
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,13 +7,9 @@
 
 #include <gtest/gtest.h>
 
-namespace clipblur::testing {
+#include "tests/support/cli_harness.h"
 
-// Runs a shell command line; the process's exit code, or -1 when it did not exit normally.
-inline int exitCodeOf(const std::string& command) {
-    const int status = std::system(command.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+namespace clipblur::testing {
 
 inline std::string readText(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);

@@ -11,7 +11,7 @@
 namespace clipblur {
 
 namespace fs = std::filesystem;
-using testing::exitCodeOf;
+using testing::runShell;
 using testing::testDir;
 using testing::readText;
 using testing::smallRender;
@@ -65,7 +65,7 @@ TEST(ExitCodes, EachKindOfFailureHasItsDocumentedCode) {
     for (const ExitCase& c : cases) {
         SCOPED_TRACE(c.name);
         fs::remove(dir / "img.exr");
-        EXPECT_EQ(exitCodeOf(smallRender(dir, c.extra)), c.code) << readText(dir / "err.txt");
+        EXPECT_EQ(runShell(smallRender(dir, c.extra)), c.code) << readText(dir / "err.txt");
         EXPECT_NE(readText(dir / "err.txt").find(c.says), std::string::npos) << readText(dir / "err.txt");
         EXPECT_EQ(fs::exists(dir / "img.exr"), c.code == 0);
     }
@@ -74,7 +74,7 @@ TEST(ExitCodes, EachKindOfFailureHasItsDocumentedCode) {
     // Stats over the job file itself (a copy): refused, the job untouched.
     fs::copy_file(std::string(CLIPBLUR_SOURCE_DIR) + "/configs/default.yaml", dir / "job.yaml");
     const std::string job = readText(dir / "job.yaml");
-    EXPECT_EQ(exitCodeOf(smallRender(dir, out + " --stats " + (dir / "job.yaml").string(), (dir / "job.yaml").string())), 5);
+    EXPECT_EQ(runShell(smallRender(dir, out + " --stats " + (dir / "job.yaml").string(), (dir / "job.yaml").string())), 5);
     EXPECT_NE(readText(dir / "err.txt").find("would overwrite the input"), std::string::npos) << readText(dir / "err.txt");
     EXPECT_EQ(readText(dir / "job.yaml"), job);
     EXPECT_FALSE(fs::exists(dir / "img.exr"));
@@ -84,8 +84,8 @@ TEST(ExitCodes, JobAndSceneErrorsOfValidateAndRender) {
     const fs::path dir = testDir();
     const std::string validate = std::string(CLIPBLUR_BINARY) + " validate ";
     const std::string quiet = " > " + (dir / "out.txt").string() + " 2> " + (dir / "err.txt").string();
-    EXPECT_EQ(exitCodeOf(validate + (dir / "missing.yaml").string() + quiet), 3);
-    EXPECT_EQ(exitCodeOf(validate + objJob(dir, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").string() + quiet), 0);
+    EXPECT_EQ(runShell(validate + (dir / "missing.yaml").string() + quiet), 3);
+    EXPECT_EQ(runShell(validate + objJob(dir, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").string() + quiet), 0);
     const std::vector<std::pair<std::string, std::string>> bad_objs{
         {"v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "mesh.obj:2:3: 'nan' is not a finite number"},
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "mesh.obj:4:7: vertex index 4 does not exist"},
@@ -95,7 +95,7 @@ TEST(ExitCodes, JobAndSceneErrorsOfValidateAndRender) {
         for (const std::string command : {validate, std::string(CLIPBLUR_BINARY) + " render --out " +
                                                          (dir / "o.exr").string() + " "}) {
             SCOPED_TRACE(command + text);
-            EXPECT_EQ(exitCodeOf(command + objJob(dir, text).string() + quiet), 4);
+            EXPECT_EQ(runShell(command + objJob(dir, text).string() + quiet), 4);
             EXPECT_NE(readText(dir / "err.txt").find(says), std::string::npos) << readText(dir / "err.txt");
             EXPECT_FALSE(fs::exists(dir / "o.exr"));
         }

@@ -20,7 +20,7 @@ extern char** environ;
 namespace clipblur {
 
 namespace fs = std::filesystem;
-using testing::exitCodeOf;
+using testing::runShell;
 using testing::testDir;
 using testing::readText;
 using testing::smallRender;
@@ -31,7 +31,7 @@ using testing::temporariesIn;
 TEST(RenderOutputs, AFailingOutputLeavesEveryEarlierOutputAsItWas) {
     const fs::path dir = testDir();
     const std::string out = " --out " + (dir / "img.exr").string(), no_png = " --set output.png_preview=false";
-    ASSERT_EQ(exitCodeOf(smallRender(dir, out + no_png)), 0) << readText(dir / "err.txt");
+    ASSERT_EQ(runShell(smallRender(dir, out + no_png)), 0) << readText(dir / "err.txt");
     const std::string image = readText(dir / "img.exr"), stats = readText(dir / "img.stats.json");
     fs::create_directories(dir / "img.png");
     std::ofstream(dir / "file") << "x";
@@ -39,7 +39,7 @@ TEST(RenderOutputs, AFailingOutputLeavesEveryEarlierOutputAsItWas) {
     for (const std::string& extra : std::vector<std::string>{" --set output.png_preview=true", no_png + " --stats " + (dir / "file" / "s.json").string(),
                                     no_png + " --set output.stats=" + (dir / "img.png").string()}) {
         SCOPED_TRACE(extra);
-        EXPECT_EQ(exitCodeOf(smallRender(dir, out + " --set render.seed=7" + extra)), 5) << readText(dir / "err.txt");
+        EXPECT_EQ(runShell(smallRender(dir, out + " --set render.seed=7" + extra)), 5) << readText(dir / "err.txt");
         EXPECT_EQ(readText(dir / "img.exr"), image);
         EXPECT_EQ(readText(dir / "img.stats.json"), stats);
         EXPECT_EQ(temporariesIn(dir), 0);
@@ -63,7 +63,7 @@ TEST(RenderOutputs, CollidingOutputsAreRefusedBeforeRendering) {
     fs::create_directory_symlink(dir, dir / "link");
     for (const auto& [extra, says] : cases) {
         SCOPED_TRACE(extra);
-        EXPECT_EQ(exitCodeOf(smallRender(dir, extra)), 5);
+        EXPECT_EQ(runShell(smallRender(dir, extra)), 5);
         EXPECT_NE(readText(dir / "err.txt").find(says), std::string::npos) << readText(dir / "err.txt");
         EXPECT_EQ(readText(dir / "out.txt"), "") << "nothing rendered";
     }
@@ -76,20 +76,20 @@ TEST(RenderOutputs, CollidingOutputsAreRefusedBeforeRendering) {
 TEST(RenderOutputs, ResumeRendersOnlyWhatIsMissing) {
     const fs::path dir = testDir();
     const std::string render = " --frames 0-3 --out " + (dir / "f.#.exr").string();
-    ASSERT_EQ(exitCodeOf(smallRender(dir, render + " --resume")), 0);
+    ASSERT_EQ(runShell(smallRender(dir, render + " --resume")), 0);
     fs::remove(dir / "f.1.exr");
     const std::string whole = readText(dir / "f.2.exr");
     std::ofstream(dir / "f.2.exr", std::ios::binary) << whole.substr(0, whole.size() / 2);
-    ASSERT_EQ(exitCodeOf(smallRender(dir, render + " --resume")), 0);
+    ASSERT_EQ(runShell(smallRender(dir, render + " --resume")), 0);
     const std::string log = readText(dir / "out.txt");
     EXPECT_NE(log.find("frame 0: " + (dir / "f.0.exr").string() + " complete, skipped"), std::string::npos) << log;
     EXPECT_NE(log.find("frame 1: wrote"), std::string::npos) << log;
     EXPECT_NE(log.find("frame 2: wrote"), std::string::npos) << log;
     EXPECT_NE(log.find("frame 3: " + (dir / "f.3.exr").string() + " complete, skipped"), std::string::npos) << log;
 
-    ASSERT_EQ(exitCodeOf(smallRender(dir, render + " --resume --set render.seed=3")), 0);
+    ASSERT_EQ(runShell(smallRender(dir, render + " --resume --set render.seed=3")), 0);
     EXPECT_EQ(readText(dir / "out.txt").find("skipped"), std::string::npos) << "another job's frames are not done";
-    ASSERT_EQ(exitCodeOf(smallRender(dir, render)), 0);
+    ASSERT_EQ(runShell(smallRender(dir, render)), 0);
     EXPECT_EQ(readText(dir / "out.txt").find("skipped"), std::string::npos) << "without --resume every frame renders";
 }
 

@@ -11,6 +11,7 @@
 #include "clipblur/version.h"
 #include "io/image_writer.h"
 #include "scene/error.h"
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -177,15 +178,6 @@ TEST(ImageWriter, FailedWriteLeavesThePreviousFile) {
 namespace {
 
 // Output of a shell command (stdout), for OpenEXR's own tools.
-std::string capture(const std::string& command) {
-    std::string text;
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-    if (!pipe) return text;
-    char buffer[4096];
-    while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe.get())) text.append(buffer, n);
-    return text;
-}
-
 FrameHeader sampleFrameHeader() {
     FrameHeader h;
     h.frame = 7;
@@ -253,7 +245,7 @@ TEST(ImageWriter, ExrheaderSeesStandardAttributesAndFloatDepth) {
     meta.frame = sampleFrameHeader();
     const fs::path file = dir / "piz.exr";
     writeExr(file, windowedImage(), meta, ExrFormat{true, ExrCompression::Piz});
-    const std::string text = capture("exrheader " + file.string());
+    const std::string text = testing::captureShell("exrheader " + file.string());
     // exrheader's own spelling of each attribute; the standard names are OpenEXR's, not OpenImageIO's.
     const char* lines[] = {"framesPerSecond (type rational): 24000/1001",
                            "expTime (type float):",

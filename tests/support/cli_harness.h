@@ -11,6 +11,8 @@ namespace clipblur::testing {
 
 // Runs a shell command line; the process's exit code, or -1 when it did not exit normally.
 int runShell(const std::string& command);
+// Runs a shell command line and returns what it wrote to stdout.
+std::string captureShell(const std::string& command);
 
 // An empty folder of that name under the system's temporary folder.
 std::filesystem::path freshTempDir(const std::string& name);
