@@ -180,7 +180,7 @@ void checkFrameFiles(const std::vector<FrameFiles>& frames, std::vector<std::fil
 bool frameIsDone(const RenderJob& job, const FrameFiles& files, const std::optional<TileShard>& shard) {
     const int w = job.scene.film.width, h = job.scene.film.height;
     if (shard) return shardIsComplete(files.image, w, h, *shard, job.config_hash);
-    return checkImage(files.image, ImageExpectation{w, h, DataWindow{0, 0, w, h}, job.config_hash, {}}).complete;
+    return checkImage(files.image, ImageExpectation{w, h, PixelBounds::sized(0, 0, w, h), job.config_hash, {}}).complete;
 }
 
 ImageMetadata metadataFor(const RenderJob& job, int frame, RenderResult& result, const std::optional<TileShard>& shard) {
@@ -189,17 +189,15 @@ ImageMetadata metadataFor(const RenderJob& job, int frame, RenderResult& result,
     if (job.render.method == Method::Stochastic || job.render.method == Method::Accumulation)
         meta.samples = job.render.samples;
     // Tiles plan their own counts; the header gives the largest (0 when nothing moved).
-    if (const auto it = result.stats.counts.find("subframes_max_per_tile"); it != result.stats.counts.end())
-        meta.subframes = static_cast<int>(it->second);
+    meta.subframes = static_cast<int>(result.stats.subframesMaxPerTile());
     meta.seed = job.render.seed;
     meta.config_hash = job.config_hash;
     meta.frame = frameHeader(job, frame);
-    if (const auto it = result.stats.seconds.find("total"); it != result.stats.seconds.end())
-        meta.render_seconds = it->second;
+    meta.render_seconds = result.stats.total_seconds;
     if (shard) {
         meta.tile_index = shard->index;
         meta.tile_count = shard->count;
-        result.stats.info["window"] = toString(result.image.window());
+        result.stats.window = result.image.window;
     }
     return meta;
 }
@@ -229,8 +227,7 @@ void renderAndWriteFrame(const RenderJob& job, const FrameFiles& files, const st
     }
     if (reference) {
         const ReferenceError e = compareWithReference(result.image, *reference);
-        result.stats.error = {{"rmse", e.rmse}, {"max_abs", e.max_abs}, {"mean_abs", e.mean_abs}};
-        result.stats.info["reference"] = files.reference;
+        result.stats.reference = RenderStats::Reference{files.reference, e.rmse, e.max_abs, e.mean_abs};
         std::cout << "frame " << frame << ": against the reference RMSE " << e.rmse << ", max error " << e.max_abs
                   << "\n";
     }

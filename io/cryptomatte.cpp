@@ -107,7 +107,7 @@ std::string cryptomatteKey(const std::string& name) {
 std::map<std::string, std::string> addCryptomatte(Image& image, const ObjectCoverage& coverage,
                                                   const std::vector<std::string>& object_names,
                                                   const CryptomatteSettings& settings) {
-    const std::size_t n = static_cast<std::size_t>(image.data_width) * static_cast<std::size_t>(image.data_height);
+    const std::size_t n = image.window.area();
     if (coverage.pixels.size() != n) throw Error(ExitCode::Internal, "object coverage does not match the image");
     std::vector<std::uint32_t> hashes;
     nlohmann::json manifest = nlohmann::json::object();

@@ -76,7 +76,7 @@ bool frameIsMerged(const std::string& framePath, const FrameExpectation& expecte
         want.width = in->spec().full_width;
         want.height = in->spec().full_height;
     }
-    want.window = {0, 0, want.width, want.height};
+    want.window = PixelBounds::sized(0, 0, want.width, want.height);
     want.config_hash = expected.config_hash;
     want.channels = expected.channels;
     return checkImage(framePath, want).complete;

@@ -15,13 +15,13 @@ namespace clipblur {
 namespace {
 
 void checkImage(const Image& image) {
-    const std::size_t n = static_cast<std::size_t>(image.data_width) * static_cast<std::size_t>(image.data_height);
+    const std::size_t n = image.window.area();
     if (image.channels.empty()) throw Error(ExitCode::Output, "image has no channels");
     for (const auto& c : image.channels)
         if (c.values.size() != n)
             throw Error(ExitCode::Output, "channel '" + c.name + "' has " + std::to_string(c.values.size()) +
-                                              " values for a " + std::to_string(image.data_width) + "x" +
-                                              std::to_string(image.data_height) + " data window");
+                                              " values for a " + std::to_string(image.window.width()) + "x" +
+                                              std::to_string(image.window.height()) + " data window");
 }
 
 void writeWith(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const void* pixels,
@@ -70,9 +70,9 @@ void addProvenance(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {
 
 OIIO::ImageSpec exrSpec(const Image& image, const ExrFormat& format) {
     const int nc = static_cast<int>(image.channels.size());
-    OIIO::ImageSpec spec(image.data_width, image.data_height, nc, OIIO::TypeDesc::FLOAT);
-    spec.x = image.x0;
-    spec.y = image.y0;
+    OIIO::ImageSpec spec(image.window.width(), image.window.height(), nc, OIIO::TypeDesc::FLOAT);
+    spec.x = image.window.x0;
+    spec.y = image.window.y0;
     spec.full_x = 0;
     spec.full_y = 0;
     spec.full_width = image.width;
@@ -126,7 +126,7 @@ void writeExr(AtomicFileGroup& group, const std::filesystem::path& path, const I
         if (metadata.frame) addFrameHeader(spec, *metadata.frame);
 
         const std::size_t nc = image.channels.size();
-        const std::size_t n = static_cast<std::size_t>(image.data_width) * image.data_height;
+        const std::size_t n = image.window.area();
         std::vector<float> interleaved(n * nc);
         for (std::size_t c = 0; c < nc; ++c) {
             const auto& values = image.channels[c].values;
@@ -159,13 +159,13 @@ void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, 
             if (!c) throw Error(ExitCode::Output, "PNG preview needs R, G and B channels");
         if (!alpha) throw Error(ExitCode::Output, "PNG preview needs an A channel");
         std::vector<std::uint8_t> pixels(static_cast<std::size_t>(image.width) * image.height * 3, 0);
-        for (int y = 0; y < image.data_height; ++y) {
-            const int fy = y + image.y0;
+        for (int y = 0; y < image.window.height(); ++y) {
+            const int fy = y + image.window.y0;
             if (fy < 0 || fy >= image.height) continue;
-            for (int x = 0; x < image.data_width; ++x) {
-                const int fx = x + image.x0;
+            for (int x = 0; x < image.window.width(); ++x) {
+                const int fx = x + image.window.x0;
                 if (fx < 0 || fx >= image.width) continue;
-                const std::size_t src = static_cast<std::size_t>(y) * image.data_width + x;
+                const std::size_t src = static_cast<std::size_t>(y) * image.window.width() + x;
                 const std::size_t dst = (static_cast<std::size_t>(fy) * image.width + fx) * 3;
                 const double uncovered = 1.0 - static_cast<double>(alpha->values[src]);
                 for (int c = 0; c < 3; ++c)

@@ -48,9 +48,9 @@ ReferenceError compareWithReference(const Image& image, const ReferenceImage& re
     const std::array<const Image::Channel*, 3> channels{image.find("R"), image.find("G"), image.find("B")};
     ReferenceError e;
     double squares = 0.0, absolutes = 0.0;
-    const DataWindow w = image.window();
-    for (int y = w.y0; y < w.y1(); ++y) {
-        for (int x = w.x0; x < w.x1(); ++x) {
+    const PixelBounds w = image.window;
+    for (int y = w.y0; y < w.y1; ++y) {
+        for (int x = w.x0; x < w.x1; ++x) {
             ++e.pixels;
             for (int k = 0; k < 3; ++k) {
                 const double d = double(channels[static_cast<std::size_t>(k)]->values[image.index(x, y)]) -

@@ -65,19 +65,15 @@ static int splitPoint(int k, int n, int size) {
     return static_cast<int>(static_cast<long long>(k) * size / n);
 }
 
-DataWindow shardWindow(int width, int height, TileShard shard) {
+PixelBounds shardWindow(int width, int height, TileShard shard) {
     if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count)
         throw Error(ExitCode::Usage, "tile " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
                                          " out of range");
     const ShardGrid grid = shardGrid(width, height, shard.count);
     const int col = shard.index % grid.cols;
     const int row = shard.index / grid.cols;
-    DataWindow w;
-    w.x0 = splitPoint(col, grid.cols, width);
-    w.y0 = splitPoint(row, grid.rows, height);
-    w.width = splitPoint(col + 1, grid.cols, width) - w.x0;
-    w.height = splitPoint(row + 1, grid.rows, height) - w.y0;
-    return w;
+    return PixelBounds::corners(splitPoint(col, grid.cols, width), splitPoint(row, grid.rows, height),
+                                splitPoint(col + 1, grid.cols, width), splitPoint(row + 1, grid.rows, height));
 }
 
 std::string shardPath(const std::string& framePath, TileShard shard) {
@@ -100,7 +96,7 @@ ImageCheck checkImage(const fs::path& path, const ImageExpectation& expected) {
         spec.full_height != expected.height)
         return fail("display window " + std::to_string(spec.full_width) + "x" + std::to_string(spec.full_height) +
                     " differs from " + std::to_string(expected.width) + "x" + std::to_string(expected.height));
-    const DataWindow window{spec.x, spec.y, spec.width, spec.height};
+    const PixelBounds window = PixelBounds::sized(spec.x, spec.y, spec.width, spec.height);
     if (spec.depth != 1 || spec.z != 0 || !(window == expected.window))
         return fail("data window " + toString(window) + " differs from " + toString(expected.window));
     if (!expected.channels.empty() && spec.channelnames != expected.channels) {

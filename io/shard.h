@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/data_window.h"
+#include "scene/pixel_bounds.h"
 
 namespace clipblur {
 
@@ -43,7 +43,7 @@ ShardGrid shardGrid(int width, int height, int count);
 // grid; column c spans [floor(c*W/cols), floor((c+1)*W/cols)), rows likewise, so the shards never
 // overlap, cover the frame exactly and differ in size by at most one pixel per axis. Throws
 // Error(ExitCode::Usage) when the frame has fewer pixels than shards along every grid choice.
-DataWindow shardWindow(int width, int height, TileShard shard);
+PixelBounds shardWindow(int width, int height, TileShard shard);
 
 // "out.0001.exr" -> "out.0001.tile-3-of-8.exr": the shard tag goes before the extension so image tools
 // still recognise the format.
@@ -53,7 +53,7 @@ std::string shardPath(const std::string& framePath, TileShard shard);
 struct ImageExpectation {
     int width = 0;                       // display window, origin (0, 0)
     int height = 0;
-    DataWindow window;                   // expected data window
+    PixelBounds window;                   // expected data window
     std::string config_hash;             // empty: not checked
     std::vector<std::string> channels;   // empty: not checked
 };

@@ -16,6 +16,25 @@ long long peakMemoryBytes() {
     return static_cast<long long>(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
 }
 
+namespace {
+
+// Puts each field of a stats struct into its section, its name behind the prefixes of the structs around it.
+struct JsonFields {
+    nlohmann::json& json;
+    std::string prefix;
+
+    void count(const char* name, long long value) { json["counts"][prefix + name] = value; }
+    void seconds(const char* name, double value) { json["seconds"][prefix + name] = value; }
+    void info(const char* name, const std::string& text) { json["info"][prefix + name] = text; }
+    template <class Stats>
+    void nest(const char* inner, const Stats& stats) {
+        JsonFields nested{json, prefix + inner};
+        stats.fields(nested);
+    }
+};
+
+}  // namespace
+
 nlohmann::json statsToJson(const RenderStats& stats, const StatsContext& context) {
     nlohmann::json j;
     j["frame"] = context.frame;
@@ -24,10 +43,14 @@ nlohmann::json statsToJson(const RenderStats& stats, const StatsContext& context
     j["config_hash"] = context.config_hash;
     j["start_time"] = context.start_time;
     j["peak_memory_bytes"] = peakMemoryBytes();
-    j["seconds"] = stats.seconds;
-    j["counts"] = stats.counts;
-    j["info"] = stats.info;
-    if (!stats.error.empty()) j["error"] = stats.error;
+    j["seconds"] = nlohmann::json::object();
+    j["counts"] = nlohmann::json::object();
+    j["info"] = nlohmann::json::object();
+    JsonFields fields{j, ""};
+    stats.fields(fields);
+    if (stats.reference)
+        j["error"] = {{"rmse", stats.reference->rmse}, {"max_abs", stats.reference->max_abs},
+                      {"mean_abs", stats.reference->mean_abs}};
     return j;
 }
 

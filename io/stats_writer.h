@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
-#include "renderer/image.h"
+#include "renderer/render_stats.h"
 
 namespace clipblur {
 
@@ -24,7 +24,9 @@ struct StatsContext {
 };
 
 // The stats of one frame as JSON: {"frame", "image", "threads", "config_hash", "start_time",
-// "peak_memory_bytes", "seconds": {stage: s}, "counts": {...}, "info": {...}}.
+// "peak_memory_bytes", "seconds": {stage: s}, "counts": {...}, "info": {...}} and, against a reference,
+// "error": {"rmse", "max_abs", "mean_abs"}; the keys of "seconds", "counts" and "info" are the names the
+// stats structs give their fields (RenderStats::fields).
 nlohmann::json statsToJson(const RenderStats& stats, const StatsContext& context);
 
 // `time` as UTC ISO 8601 to the second, e.g. 2026-11-25T01:17:28Z.

@@ -3,18 +3,15 @@
 namespace clipblur {
 
 Image Image::make(int width, int height, const std::vector<std::string>& names) {
-    return make(width, height, DataWindow{0, 0, width, height}, names);
+    return make(width, height, PixelBounds::sized(0, 0, width, height), names);
 }
 
-Image Image::make(int width, int height, const DataWindow& window, const std::vector<std::string>& names) {
+Image Image::make(int width, int height, const PixelBounds& window, const std::vector<std::string>& names) {
     Image image;
     image.width = width;
     image.height = height;
-    image.x0 = window.x0;
-    image.y0 = window.y0;
-    image.data_width = window.width;
-    image.data_height = window.height;
-    const std::size_t n = static_cast<std::size_t>(window.width) * static_cast<std::size_t>(window.height);
+    image.window = window;
+    const std::size_t n = window.area();
     for (const auto& name : names) image.channels.push_back({name, std::vector<float>(n, 0.0f)});
     return image;
 }

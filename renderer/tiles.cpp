@@ -19,10 +19,10 @@ TileGrid::TileGrid(int x0, int y0, int width, int height, int tile_size) : TileG
     y0_ = y0;
 }
 
-Tile TileGrid::tile(int index) const {
+PixelBounds TileGrid::tile(int index) const {
     const int tx = index % columns_;
     const int ty = index / columns_;
-    Tile t;
+    PixelBounds t;
     t.x0 = x0_ + tx * size_;
     t.y0 = y0_ + ty * size_;
     t.x1 = std::min(t.x0 + size_, x0_ + width_);

@@ -1,17 +1,8 @@
 #pragma once
 
+#include "scene/pixel_bounds.h"
+
 namespace clipblur {
-
-// Pixel rectangle [x0, x1) x [y0, y1).
-struct Tile {
-    int x0 = 0;
-    int y0 = 0;
-    int x1 = 0;
-    int y1 = 0;
-
-    int width() const { return x1 - x0; }
-    int height() const { return y1 - y0; }
-};
 
 // Row-major grid of square tiles covering a width x height image; edge tiles are clipped. Tasks are
 // numbered 0 .. count()-1 so a parallel loop over a flat index reaches every pixel exactly once.
@@ -27,7 +18,7 @@ public:
     int y0() const { return y0_; }
     int columns() const { return columns_; }
     int rows() const { return rows_; }
-    Tile tile(int index) const;
+    PixelBounds tile(int index) const;
 
 private:
     int x0_ = 0;

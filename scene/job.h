@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/data_window.h"
+#include "scene/pixel_bounds.h"
 #include "scene/scene.h"
 
 namespace clipblur {
@@ -51,7 +51,7 @@ struct RenderSettings {
     bool audit = false;
     // The pixels to compute; unset means the whole film. Not part of the job file (render --tile sets
     // it per shard), so every shard of a frame shares the job's config hash.
-    std::optional<DataWindow> window;
+    std::optional<PixelBounds> window;
 };
 
 // Separate: the EXR holds premultiplied colour of the surfaces only (OpenEXR convention; comp an

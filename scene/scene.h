@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "scene/error.h"
+#include "scene/pixel_bounds.h"
 
 namespace clipblur {
 
@@ -31,6 +32,8 @@ struct Film {
     int width = 640;
     int height = 360;
     glm::dvec3 background{0.0};
+
+    PixelBounds pixels() const { return PixelBounds::sized(0, 0, width, height); }
 };
 
 // Decomposed object-to-world transform key; rotation is interpolated by slerp, not by lerping matrices.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -25,7 +24,6 @@
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
 #include "renderer/visibility/embree_scene.h"
-#include "renderer/worker_threads.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -83,27 +81,11 @@ std::optional<PixelSums> midShutterDepth(const RenderJob& job, const EmbreeScene
     const Scene& scene = job.scene;
     if (!job.output.aov_depth || sceneIsStill(scene, t0, t1)) return std::nullopt;
     PixelSums sums;
-    sums.resize(static_cast<std::size_t>(scene.film.width) * scene.film.height);
+    sums.resize(scene.film.pixels().area());
     buildFrameFragments(scene, embree, adjacency, Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees),
                         TileGrid(scene.film.width, scene.film.height, job.render.tile_size), 0.5 * (t0 + t1), shader,
                         {job.render.visibility_rays, false, job.render.audit}, callbacks, &sums, stats);
     return sums;
-}
-
-void recordFrameStats(RenderStats& stats, const std::string& prefix, const FrameFragmentStats& s) {
-    stats.counts[prefix + "rays"] = s.candidates.rays;
-    stats.counts[prefix + "hit_triangles"] = s.candidates.hit_triangles;
-    stats.counts[prefix + "candidates"] = s.candidates.candidates;
-    stats.counts[prefix + "binned_triangles"] = s.candidates.binned;
-    stats.counts[prefix + "exhaustive_tiles"] = s.candidates.exhaustive_tiles;
-    stats.counts[prefix + "fragments"] = s.fragments;
-    stats.counts[prefix + "shaded_pieces"] = s.shaded_pieces;
-    stats.counts[prefix + "merged_triangles"] = s.merged_triangles;
-    stats.counts[prefix + "fragment_triangles"] = s.triangles;
-    stats.counts[prefix + "near_clipped"] = s.near_clipped;
-    static const char* buckets[] = {"0", "1", "2", "3_4", "5_8", "over_8"};
-    for (std::size_t b = 0; b < s.fragments_per_pixel.size(); ++b)
-        stats.counts[prefix + "pixels_with_fragments_" + buckets[b]] = s.fragments_per_pixel[b];
 }
 
 // Per-frame motion vectors of fragment triangles (centroid, raster, shutter open to close).
@@ -122,15 +104,7 @@ std::vector<glm::vec2> fragmentMotion(const Scene& scene, const Projection& proj
 
 // With render.audit set every resolved tile was checked by auditTile. A violation is a renderer bug, so
 // the render fails (no image is written) instead of returning a wrong picture.
-void reportAudit(RenderStats& stats, const AuditStats& audit) {
-    stats.counts["audit_pixels"] = audit.pixels;
-    stats.counts["audit_union_pixels"] = audit.union_pixels;
-    stats.counts["audit_union_skipped"] = audit.union_skipped;
-    stats.counts["audit_violations"] = audit.violations;
-    char worst[160];
-    std::snprintf(worst, sizeof worst, "outside %.3g px, overlap %.3g px^2, coverage %.3g px^2", audit.worst_outside,
-                  audit.worst_overlap, audit.worst_coverage);
-    stats.info["audit_worst"] = worst;
+void checkAudit(const AuditStats& audit) {
     if (audit.violations > 0)
         throw Error(ExitCode::Render, "fragment audit: " + std::to_string(audit.violations) +
                                           " invariant violations; " + audit.first_violation);
@@ -169,16 +143,17 @@ const ObjectShares* sharesAt(const PixelSums& sums, std::size_t p) {
 // the backdrop under a moving edge in the same pixel is where it is not. `front` carries the segment's
 // weight; the backdrop image (film pixels) is the same for every segment.
 void compositeBackdrop(const WindowSums& front, const PixelSums& backdrop, const MotionPlan& plan,
-                       const TileGrid& grid, const DataWindow& window, int film_w, double weight, WindowSums& sums) {
+                       const TileGrid& grid, const PixelBounds& window, const PixelBounds& film, double weight,
+                       WindowSums& sums) {
     const int size = grid.tileSize();
-    for (int y = window.y0; y < window.y1(); ++y) {
-        for (int x = window.x0; x < window.x1(); ++x) {
-            const std::size_t i = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
+    for (int y = window.y0; y < window.y1; ++y) {
+        for (int x = window.x0; x < window.x1; ++x) {
+            const std::size_t i = window.index(x, y);
             sums.add(i, 1.0, front.colour[i], front.covered[i], front.depth[i], front.motion[i],
                      front.objects.empty() ? nullptr : &front.objects[i]);
             if (!plan.backdrop[static_cast<std::size_t>((y / size) * grid.columns() + x / size)]) continue;
             const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
-            const std::size_t p = static_cast<std::size_t>(y) * film_w + x;
+            const std::size_t p = film.index(x, y);
             sums.add(i, seen, backdrop.colour[p], backdrop.covered[p], backdrop.depth[p], {}, sharesAt(backdrop, p));
         }
     }
@@ -192,26 +167,19 @@ struct ClippedContext {
     const MeshAdjacency& adjacency;
     Projection projection;
     TileGrid grid;
-    DataWindow window;
+    PixelBounds window;
     double t0, t1;  // the whole shutter
     const RenderCallbacks& callbacks;
     const Backdrop& backdrop;  // findBackdrop: empty when no backdrop can exist
 };
 
+// What carries from one shutter segment to the next: the frame's stats, the backdrop image and the set
+// the next segment opens with.
 struct SegmentTotals {
-    FrameFragmentStats open, close;
-    ReclipStats reclip;
-    long long spilled = 0;  // sweep: pixel sums one tile's fragments left in another tile's pixels
-    long long subframes_total = 0, still_tiles = 0, capped_tiles = 0, measured = 0, near_crossings = 0;
-    long long backdrop_tiles = 0;
-    long long frame_sets = 0;  // fragment sets built: one per segment end, the shared ones once
-    int max_tile_subframes = 0;
-    double frame_seconds = 0.0, plan_seconds = 0.0, tile_seconds = 0.0;  // where a segment's time goes
+    ClippedStats stats;
     std::optional<PixelSums> backdrop;  // the still backdrop's image, made when a segment first needs it
-    FrameFragmentStats backdrop_stats;
     // The last segment's closing set with its still image: the next segment's opening set, at the same time.
     std::optional<std::pair<std::vector<FragmentTriangle>, PixelSums>> carried;
-    int band = 0;
 };
 
 // One pixel's sums from one tile: to the window pixel `out` when it is another tile's pixel.
@@ -228,16 +196,16 @@ struct Spill {
 // peak speed falling between the plan's samples), so they reach reach / 2 + 1 pixels past where they are
 // re-clipped. Tiles on the film edge also re-clip that far outside it, where nothing else would, because
 // surfaces there sweep into the film.
-SweepInterval sweepInterval(const Tile& tile, const SubframePlan& plan, int n, int film_w, int film_h) {
+SweepInterval sweepInterval(const PixelBounds& tile, const SubframePlan& plan, int n, const PixelBounds& film) {
     SweepInterval s;
     s.reach = 2.0 * plan.max_sweep_pixels / n + 1.0;
     const int apron = static_cast<int>(std::ceil(0.5 * s.reach)) + 1;
     s.resolve = tile;
     if (tile.x0 == 0) s.resolve.x0 -= apron;
     if (tile.y0 == 0) s.resolve.y0 -= apron;
-    if (tile.x1 == film_w) s.resolve.x1 += apron;
-    if (tile.y1 == film_h) s.resolve.y1 += apron;
-    s.box = {s.resolve.x0 - apron, s.resolve.y0 - apron, s.resolve.x1 + apron, s.resolve.y1 + apron};
+    if (tile.x1 == film.x1) s.resolve.x1 += apron;
+    if (tile.y1 == film.y1) s.resolve.y1 += apron;
+    s.box = PixelBounds::corners(s.resolve.x0 - apron, s.resolve.y0 - apron, s.resolve.x1 + apron, s.resolve.y1 + apron);
     return s;
 }
 
@@ -261,7 +229,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     // segment opens with is built with that segment's band too, and its still image.
     const bool carry = both_frames && segment + 1 < segments;
     int band = bands[static_cast<std::size_t>(segment)];
-    totals.band = std::max(totals.band, band);
+    totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, bands[static_cast<std::size_t>(segment) + 1]);
     const auto grid = [&](int b) {
         return TileGrid(-b, -b, scene.film.width + 2 * b, scene.film.height + 2 * b, settings.tile_size);
@@ -269,7 +237,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     const FrameFragmentOptions options{settings.visibility_rays, !still_scene, settings.audit,
                                        ctx.backdrop.behind_everything ? &ctx.backdrop.objects : nullptr};
     auto stage = Clock::now();
-    const std::size_t film_pixels = static_cast<std::size_t>(scene.film.width) * scene.film.height;
+    const std::size_t film_pixels = scene.film.pixels().area();
     std::vector<FragmentTriangle> open;
     PixelSums still;
     if (totals.carried) {
@@ -281,8 +249,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         still.resize(film_pixels, track_objects);
         open = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), ts, ctx.shader,
                                    options, ctx.callbacks, &still, open_stats);
-        totals.open.merge(open_stats);
-        ++totals.frame_sets;
+        totals.stats.open.merge(open_stats);
+        ++totals.stats.frame_sets;
     }
     std::vector<FragmentTriangle> close;
     if (both_frames) {
@@ -291,11 +259,11 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         if (carry) next_still.resize(film_pixels, track_objects);
         close = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), te, ctx.shader,
                                     options, ctx.callbacks, carry ? &next_still : nullptr, close_stats);
-        totals.close.merge(close_stats);
-        ++totals.frame_sets;
+        totals.stats.close.merge(close_stats);
+        ++totals.stats.frame_sets;
         if (carry) totals.carried.emplace(close, std::move(next_still));
     }
-    totals.frame_seconds += secondsSince(stage);
+    totals.stats.seconds.frame_fragments += secondsSince(stage);
     stage = Clock::now();
 
     // 2. Subframes per tile from the fragments' image-plane speeds (eq. 24, corrected).
@@ -315,17 +283,17 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
     }
     const MotionPlan plan = planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes,
                                        settings.max_subframes, sweeping, ctx.backdrop);
-    totals.capped_tiles += plan.capped_tiles;
-    totals.measured += plan.measured;
-    totals.near_crossings += plan.near_crossings;
-    totals.backdrop_tiles += plan.backdrop_tiles;
+    totals.stats.capped_tiles += plan.capped_tiles;
+    totals.stats.measured_fragment_paths += plan.measured;
+    totals.stats.near_crossing_fragments += plan.near_crossings;
+    totals.stats.sweep_backdrop_tiles += plan.backdrop_tiles;
     // With a backdrop the segment's front sums are kept apart until every spill is in.
     std::optional<WindowSums> front;
     if (plan.backdrop_tiles > 0) {
         front.emplace(sums.colour.size(), track_objects);
         if (!totals.backdrop)
             totals.backdrop = renderBackdrop(ctx.job, ctx.backdrop, 0.5 * (ctx.t0 + ctx.t1), ctx.projection,
-                                             ctx.grid, ctx.callbacks, totals.backdrop_stats);
+                                             ctx.grid, ctx.callbacks, totals.stats.backdrop.emplace());
     }
     WindowSums& target = front ? *front : sums;
 
@@ -355,10 +323,10 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         const double h = (te - ts) / intervals;
         turns.push_back(intervalTurns(scene, ctx.projection, ts + k * h, ts + (k + 1) * h, positions[static_cast<std::size_t>(k)]));
     }
-    totals.plan_seconds += secondsSince(stage);
+    totals.stats.seconds.motion_plan += secondsSince(stage);
     stage = Clock::now();
-    const DataWindow& window = ctx.window;
-    const int film_w = scene.film.width, film_h = scene.film.height;
+    const PixelBounds& window = ctx.window;
+    const PixelBounds film = scene.film.pixels();
     // Sweep integration: what a tile's fragments leave in other tiles' pixels, added after all tiles in
     // tile order so the sums do not depend on which thread finished first.
     std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.grid.count()) : 0);
@@ -371,7 +339,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             cancelled = true;
             return;
         }
-        const Tile tile = ctx.grid.tile(index);
+        const PixelBounds tile = ctx.grid.tile(index);
         const SubframePlan& tile_plan = plan.tiles[static_cast<std::size_t>(index)];
         const auto& refs = plan.refs[static_cast<std::size_t>(index)];
         // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
@@ -381,11 +349,11 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         const int n = still_tile ? 0 : tile_plan.count;
         SweepInterval sweep;
         if (sweeping && n > 0) {
-            sweep = sweepInterval(tile, tile_plan, n, film_w, film_h);
+            sweep = sweepInterval(tile, tile_plan, n, film);
             sweep.groups = plan.groups;
         }
-        const Tile reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
-        if (!window.overlaps(reach.x0, reach.y0, reach.x1, reach.y1)) {
+        const PixelBounds reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
+        if (!window.overlaps(reach)) {
             progress();
             return;
         }
@@ -416,8 +384,8 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         const auto total = [&](int x, int y) {  // fixed order: bit-identical for any thread count
             Spill sum;
             for (const TileSums& s : tile_sums) {
-                if (!s.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
-                const std::size_t i = s.index(x, y);
+                if (!s.box.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
+                const std::size_t i = s.box.index(x, y);
                 sum.colour += s.colour[i];
                 sum.covered += s.covered[i];
                 sum.depth += s.depth[i];
@@ -426,11 +394,12 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
             }
             return sum;
         };
-        for (int y = std::max(tile.y0, window.y0); y < std::min(tile.y1, window.y1()); ++y) {
-            for (int x = std::max(tile.x0, window.x0); x < std::min(tile.x1, window.x1()); ++x) {
-                const std::size_t out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
+        const PixelBounds mine = tile.intersect(window);
+        for (int y = mine.y0; y < mine.y1; ++y) {
+            for (int x = mine.x0; x < mine.x1; ++x) {
+                const std::size_t out = window.index(x, y);
                 if (still_tile) {
-                    const std::size_t pixel = static_cast<std::size_t>(y) * scene.film.width + x;
+                    const std::size_t pixel = film.index(x, y);
                     target.add(out, weight, still.colour[pixel], still.covered[pixel], still.depth[pixel], {},
                                sharesAt(still, pixel));
                     continue;
@@ -441,16 +410,16 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         }
         if (sweeping && n > 0) {
             auto& mine = spills[static_cast<std::size_t>(index)];
-            Tile reached = tile_sums[0].box;  // what the subframes' footprints reach
+            PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
             for (const TileSums& s : tile_sums)
-                reached = {std::min(reached.x0, s.box.x0), std::min(reached.y0, s.box.y0), std::max(reached.x1, s.box.x1),
-                           std::max(reached.y1, s.box.y1)};
-            for (int y = std::max(reached.y0, window.y0); y < std::min(reached.y1, window.y1()); ++y) {
-                for (int x = std::max(reached.x0, window.x0); x < std::min(reached.x1, window.x1()); ++x) {
+                reached = reached.unite(s.box);
+            const PixelBounds seen = reached.intersect(window);
+            for (int y = seen.y0; y < seen.y1; ++y) {
+                for (int x = seen.x0; x < seen.x1; ++x) {
                     if (x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1) continue;
                     Spill sum = total(x, y);
                     if (sum.covered == 0.0) continue;
-                    sum.out = static_cast<std::size_t>(y - window.y0) * window.width + (x - window.x0);
+                    sum.out = window.index(x, y);
                     sum.colour *= w;
                     sum.covered *= w;
                     sum.depth *= w;
@@ -462,21 +431,21 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         }
         {
             std::lock_guard lock(merge_mutex);
-            for (const ReclipStats& s : sub_stats) totals.reclip.merge(s);
-            totals.subframes_total += n;
-            totals.still_tiles += still_tile ? 1 : 0;
-            totals.max_tile_subframes = std::max(totals.max_tile_subframes, n);
+            for (const ReclipStats& s : sub_stats) totals.stats.reclip.merge(s);
+            totals.stats.subframes_total += n;
+            totals.stats.still_tiles += still_tile ? 1 : 0;
+            totals.stats.subframes_max_per_tile = std::max<long long>(totals.stats.subframes_max_per_tile, n);
         }
         progress();
     });
     for (const auto& tile_spills : spills) {
         for (const Spill& s : tile_spills) {
             target.add(s.out, 1.0, s.colour, s.covered, s.depth, s.motion, &s.objects);
-            ++totals.spilled;
+            ++totals.stats.sweep_spilled_pixels;
         }
     }
-    if (front) compositeBackdrop(*front, *totals.backdrop, plan, ctx.grid, window, film_w, weight, sums);
-    totals.tile_seconds += secondsSince(stage);
+    if (front) compositeBackdrop(*front, *totals.backdrop, plan, ctx.grid, window, film, weight, sums);
+    totals.stats.seconds.tiles += secondsSince(stage);
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 }
 
@@ -508,8 +477,9 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                              callbacks,
                              backdrop};
     RenderResult result;
-    RenderStats& stats = result.stats;
-    stats.seconds["scene_build"] = secondsSince(start);
+    SegmentTotals totals;
+    ClippedStats& stats = totals.stats;
+    stats.seconds.scene_build = secondsSince(start);
 
     // Shutter segments (one unless something turns far or is hidden at both ends of one), each rendered by
     // the paper's method and weighted by its length. A fixed subframe count is shared out so the shutter
@@ -525,10 +495,9 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         };
         segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
     }
-    stats.seconds["hidden_probe"] = secondsSince(stage);
+    stats.seconds.hidden_probe = secondsSince(stage);
     stage = Clock::now();
-    WindowSums sums(static_cast<std::size_t>(ctx.window.width) * ctx.window.height, job.output.cryptomatte.enabled);
-    SegmentTotals totals;
+    WindowSums sums(ctx.window.area(), job.output.cryptomatte.enabled);
     std::vector<int> bands;
     for (const ShutterSegment& s : segments)
         bands.push_back(guardBandPixels(scene, ctx.projection, s.begin, s.end,
@@ -542,10 +511,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         renderSegment(ctx, segments[s].begin, segments[s].end, fixed, segments[s].weight, static_cast<int>(s), bands,
                       sums, totals);
     }
-    stats.seconds["segments"] = secondsSince(stage);
-    stats.seconds["frame_fragments"] = totals.frame_seconds;
-    stats.seconds["motion_plan"] = totals.plan_seconds;
-    stats.seconds["tiles"] = totals.tile_seconds;
+    stats.seconds.segments = secondsSince(stage);
     FrameFragmentStats mid_stats;
     std::optional<EmbreeScene> whole;  // the mid-shutter depth sees the backdrop too
     if (backdrop.behind_everything && job.output.aov_depth) whole.emplace(device, scene, t0, t1);
@@ -554,10 +520,10 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
 
     result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(job.output));
     ImageWriter writer(result.image);
-    for (int y = ctx.window.y0; y < ctx.window.y1(); ++y) {
-        for (int x = ctx.window.x0; x < ctx.window.x1(); ++x) {
-            const std::size_t i = static_cast<std::size_t>(y - ctx.window.y0) * ctx.window.width + (x - ctx.window.x0);
-            const std::size_t p = static_cast<std::size_t>(y) * scene.film.width + x;
+    for (int y = ctx.window.y0; y < ctx.window.y1; ++y) {
+        for (int x = ctx.window.x0; x < ctx.window.x1; ++x) {
+            const std::size_t i = ctx.window.index(x, y);
+            const std::size_t p = scene.film.pixels().index(x, y);
             const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(sums.depth[i], sums.covered[i]);
             writer.write(result.image.index(x, y), sums.colour[i], sums.covered[i], z, sums.motion[i]);
             if (sums.objects.empty()) continue;
@@ -566,71 +532,45 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         }
     }
     result.objects.pixels = std::move(sums.objects);  // window-local row-major, as the image
-    stats.seconds["total"] = secondsSince(start);
 
-    stats.info["method"] = both_frames ? "clipped" : "frame0_only";
-    stats.counts["frame"] = frame;
-    stats.counts["threads"] = workerThreads();
-    stats.counts["tiles"] = ctx.grid.count();
-    stats.counts["segments"] = static_cast<long long>(segments.size());
-    stats.counts["hidden_probe_samples"] = probe.samples;
-    stats.counts["hidden_probe_hits"] = probe.hidden;
-    stats.counts["frame_sets"] = totals.frame_sets;
-    stats.counts["guard_band_pixels"] = totals.band;
-    stats.counts["still_tiles"] = totals.still_tiles;
-    stats.counts["subframes_total"] = totals.subframes_total;
-    stats.counts["subframes_max_per_tile"] = totals.max_tile_subframes;
-    stats.counts["capped_tiles"] = totals.capped_tiles;
-    stats.counts["measured_fragment_paths"] = totals.measured;
-    stats.counts["near_crossing_fragments"] = totals.near_crossings;
-    stats.counts["propagated_triangles"] = totals.reclip.propagated;
-    stats.counts["reclip_near_clipped"] = totals.reclip.near_clipped;
-    stats.counts["reclip_fragments"] = totals.reclip.fragments;
-    stats.counts["reclip_mixed_fragments"] = totals.reclip.mixed;
-    stats.counts["reclip_shaded_pieces"] = totals.reclip.shaded_pieces;
-    if (settings.time_integration == TimeIntegration::Sweep) {
-        stats.counts["sweep_positions"] = totals.reclip.sweep_positions;
-        stats.counts["sweep_unswept_fragments"] = totals.reclip.sweep_unswept;
-        stats.counts["sweep_spilled_pixels"] = totals.spilled;
-        stats.counts["sweep_backdrop_tiles"] = totals.backdrop_tiles;
-        stats.counts["sweep_backdrop_behind_everything"] = backdrop.behind_everything ? 1 : 0;
-    }
-    if (settings.path_method != PathMethod::Exact) stats.counts["ode_fallbacks"] = totals.reclip.ode_fallbacks;
-    stats.counts["triangles"] = embree.stats().triangles;
-    recordFrameStats(stats, "open_", totals.open);
-    if (both_frames) recordFrameStats(stats, "close_", totals.close);
-    if (mid) recordFrameStats(stats, "mid_", mid_stats);
-    if (totals.backdrop) recordFrameStats(stats, "backdrop_", totals.backdrop_stats);
+    stats.both_frames = both_frames;
+    stats.sweep = settings.time_integration == TimeIntegration::Sweep;
+    stats.ode = settings.path_method != PathMethod::Exact;
+    stats.tiles = ctx.grid.count();
+    stats.triangles = embree.stats().triangles;
+    stats.segments = static_cast<long long>(segments.size());
+    stats.hidden_probe_samples = probe.samples;
+    stats.hidden_probe_hits = probe.hidden;
+    stats.backdrop_behind_everything = backdrop.behind_everything;
+    if (mid) stats.mid = mid_stats;
     if (settings.audit) {
-        AuditStats audit = totals.open.audit;
-        audit.merge(totals.backdrop_stats.audit);
-        audit.merge(totals.close.audit);
+        AuditStats audit = stats.open.audit;
+        if (stats.backdrop) audit.merge(stats.backdrop->audit);
+        audit.merge(stats.close.audit);
         audit.merge(mid_stats.audit);
-        audit.merge(totals.reclip.audit);
-        reportAudit(stats, audit);
+        audit.merge(stats.reclip.audit);
+        checkAudit(audit);
+        stats.audit = audit;
     }
-    std::vector<std::string> warnings;
     if (unsplit > 0)
-        warnings.push_back(std::to_string(unsplit) + " shutter segments still hide a surface at both ends at max_segments (" +
-                           std::to_string(settings.max_segments) + "); it may show as a hole");
-    if (totals.capped_tiles > 0)
-        warnings.push_back(std::to_string(totals.capped_tiles) + " tiles needed more than max_subframes (" +
-                           std::to_string(settings.max_subframes) + "); motion there may strobe");
-    std::string joined;
-    for (const std::string& w : warnings) joined += (joined.empty() ? "" : "; ") + w;
-    if (!joined.empty()) stats.info["warning"] = joined;
+        result.stats.warnings.push_back(std::to_string(unsplit) +
+                                        " shutter segments still hide a surface at both ends at max_segments (" +
+                                        std::to_string(settings.max_segments) + "); it may show as a hole");
+    if (stats.capped_tiles > 0)
+        result.stats.warnings.push_back(std::to_string(stats.capped_tiles) + " tiles needed more than max_subframes (" +
+                                        std::to_string(settings.max_subframes) + "); motion there may strobe");
+    result.stats.method = std::move(stats);
     return result;
 }
 
 RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
-    const auto start = Clock::now();
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.render;
     const double t0 = frame + job.shutter.open;
     const double t1 = frame + job.shutter.close;
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
     const TileGrid grid(scene.film.width, scene.film.height, settings.tile_size);
-    const std::size_t pixels = static_cast<std::size_t>(scene.film.width) * scene.film.height;
+    const std::size_t pixels = scene.film.pixels().area();
     const int n = std::max(1, settings.samples);
 
     EmbreeDevice device;
@@ -657,12 +597,12 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     FrameFragmentStats mid_stats;
     const std::optional<PixelSums> mid = midShutterDepth(job, embree, adjacency, shader, t0, t1, callbacks, mid_stats);
     RenderResult result;
-    const DataWindow window = renderWindow(job);
+    const PixelBounds window = renderWindow(job);
     result.image = Image::make(scene.film.width, scene.film.height, window, outputChannels(job.output));
     ImageWriter writer(result.image);
-    for (int y = window.y0; y < window.y1(); ++y) {
-        for (int x = window.x0; x < window.x1(); ++x) {
-            const std::size_t p = static_cast<std::size_t>(y) * scene.film.width + x;
+    for (int y = window.y0; y < window.y1; ++y) {
+        for (int x = window.x0; x < window.x1; ++x) {
+            const std::size_t p = scene.film.pixels().index(x, y);
             const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(total.depth[p], total.covered[p]);
             writer.write(result.image.index(x, y), total.colour[p] / double(n), total.covered[p] / double(n), z,
                          glm::dvec2(0.0));
@@ -673,19 +613,17 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
             result.objects.pixels.push_back(std::move(shares));  // the window in row-major order
         }
     }
-    RenderStats& stats = result.stats;
-    stats.info["method"] = "accumulation";
-    stats.counts["frame"] = frame;
-    stats.counts["renders"] = n;
-    stats.counts["threads"] = workerThreads();
-    recordFrameStats(stats, "all_", frame_stats);
-    if (mid) recordFrameStats(stats, "mid_", mid_stats);
+    AccumulationStats stats;
+    stats.renders = n;
+    stats.all = frame_stats;
+    if (mid) stats.mid = mid_stats;
     if (settings.audit) {
         AuditStats audit = frame_stats.audit;
         audit.merge(mid_stats.audit);
-        reportAudit(stats, audit);
+        checkAudit(audit);
+        stats.audit = audit;
     }
-    stats.seconds["total"] = secondsSince(start);
+    result.stats.method = std::move(stats);
     return result;
 }
 

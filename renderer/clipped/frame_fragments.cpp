@@ -29,7 +29,7 @@ int bucketOf(std::size_t count) {
 }
 
 // The part of a screen triangle inside the tile's rectangle.
-ConvexPolygon clipToTile(const ScreenTriangle& t, const Tile& tile) {
+ConvexPolygon clipToTile(const ScreenTriangle& t, const PixelBounds& tile) {
     ConvexPolygon poly = ConvexPolygon::triangle(t.raster[0], t.raster[1], t.raster[2]);
     const double bounds[4] = {double(tile.x0), double(tile.x1), double(tile.y0), double(tile.y1)};
     for (int side = 0; side < 4; ++side) {
@@ -106,7 +106,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
             cancelled = true;
             return;
         }
-        const Tile tile = grid.tile(index);
+        const PixelBounds tile = grid.tile(index);
         TileOutput& out = outputs[static_cast<std::size_t>(index)];
         Scratch& scratch = scratches.local();
         std::vector<std::uint32_t> candidates;
@@ -119,7 +119,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         for (std::uint32_t c : candidates) local.push_back(frame.triangles()[c]);
 
         FragmentTile fragments;
-        resolveTile(local, {tile.x0, tile.y0, tile.width(), tile.height()}, {}, scratch.tile, fragments);
+        resolveTile(local, tile, {}, scratch.tile, fragments);
         out.stats.rejected_triangles += fragments.rejected_triangles;
         out.stats.dropped_area += fragments.dropped_area;
         if (options.audit) auditTile(local, fragments, out.stats.audit);

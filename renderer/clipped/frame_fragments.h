@@ -9,7 +9,7 @@
 #include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/pixel_resolver.h"
 #include "renderer/object_coverage.h"
-#include "renderer/render.h"
+#include "renderer/render_callbacks.h"
 #include "renderer/shading/shading.h"
 #include "renderer/tiles.h"
 #include "renderer/visibility/candidates.h"
@@ -41,6 +41,21 @@ struct FrameFragmentStats {
     AuditStats audit;                                 // filled when FrameFragmentOptions::audit is set
 
     void merge(const FrameFragmentStats& other);
+    // The audit is reported once per render (ClippedStats), not per fragment set.
+    template <class Fields>
+    void fields(Fields& f) const {
+        f.nest("", candidates);
+        f.count("fragments", fragments);
+        f.count("shaded_pieces", shaded_pieces);
+        f.count("merged_triangles", merged_triangles);
+        f.count("fragment_triangles", triangles);
+        f.count("near_clipped", near_clipped);
+        static const char* buckets[] = {"pixels_with_fragments_0",   "pixels_with_fragments_1",
+                                        "pixels_with_fragments_2",   "pixels_with_fragments_3_4",
+                                        "pixels_with_fragments_5_8", "pixels_with_fragments_over_8"};
+        for (std::size_t b = 0; b < fragments_per_pixel.size(); ++b) f.count(buckets[b], fragments_per_pixel[b]);
+    }
+    friend bool operator==(const FrameFragmentStats&, const FrameFragmentStats&) = default;
 };
 
 struct FrameFragmentOptions {

@@ -50,9 +50,9 @@ bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<
 // sweep along x over the boxes sorted by their left edge; a tile with one group has none.
 template <class GroupOf>
 double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
-                      const RasterBox& tile, GroupOf group) {
+                      const RasterBounds& tile, GroupOf group) {
     struct Item {
-        RasterBox box;  // swept box within the tile
+        RasterBounds box;  // swept box within the tile
         std::uint32_t group;
         const FragmentMotion* motion;
     };
@@ -63,7 +63,7 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
     for (const FragmentRef& ref : refs) {
         const FragmentMotion& fm = motion[ref.layer][ref.index];
         if (fm.crosses_near) continue;
-        const RasterBox box{glm::max(fm.swept.lo, tile.lo), glm::min(fm.swept.hi, tile.hi)};
+        const RasterBounds box{glm::max(fm.swept.lo, tile.lo), glm::min(fm.swept.hi, tile.hi)};
         if (box.empty()) continue;
         items.push_back({box, group(ref), &fm});
         several = several || items.back().group != items.front().group;
@@ -76,7 +76,7 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
         std::erase_if(active, [&](const Item* a) { return a->box.hi.x < item.box.lo.x; });
         for (const Item* other : active) {
             if (other->group == item.group) continue;
-            const RasterBox meet{glm::max(item.box.lo, other->box.lo), glm::min(item.box.hi, other->box.hi)};
+            const RasterBounds meet{glm::max(item.box.lo, other->box.lo), glm::min(item.box.hi, other->box.hi)};
             if (meet.empty()) continue;
             for (const glm::dvec2& corner :
                  {meet.lo, meet.hi, glm::dvec2(meet.lo.x, meet.hi.y), glm::dvec2(meet.hi.x, meet.lo.y)})
@@ -146,7 +146,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
     for (int layer = 0; layer < 2; ++layer) {
         const auto& m = motion[static_cast<std::size_t>(layer)];
         for (std::uint32_t i = 0; i < m.size(); ++i) {
-            const RasterBox& box = m[i].swept;
+            const RasterBounds& box = m[i].swept;
             int c0 = 0, c1 = grid.columns() - 1, r0 = 0, r1 = grid.rows() - 1;
             if (!m[i].crosses_near) {
                 c0 = static_cast<int>(std::clamp(std::floor(box.lo.x / size), 0.0, double(grid.columns())));
@@ -214,8 +214,8 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 deviation = std::max(deviation, fm.parabola_deviation);
                 unstretched = std::max(unstretched, fm.unstretched_error);
             }
-            const Tile t = grid.tile(index);
-            const double relative = relativeMotion(refs, motion, RasterBox{{t.x0, t.y0}, {t.x1, t.y1}}, motionGroup);
+            const PixelBounds t = grid.tile(index);
+            const double relative = relativeMotion(refs, motion, RasterBounds{{t.x0, t.y0}, {t.x1, t.y1}}, motionGroup);
             p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), unstretched / kChordTolerance}),
                                     max_subframes,
                                     &p.capped);

@@ -3,7 +3,8 @@
 #include <vector>
 
 #include "renderer/clipped/frame_fragments.h"
-#include "renderer/render.h"
+#include "renderer/render_callbacks.h"
+#include "scene/job.h"
 #include "renderer/tiles.h"
 
 namespace clipblur {

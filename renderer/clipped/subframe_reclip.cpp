@@ -10,9 +10,9 @@
 
 namespace clipblur {
 
-void TileSums::reset(const Tile& b) {
+void TileSums::reset(const PixelBounds& b) {
     box = b;
-    const std::size_t pixels = static_cast<std::size_t>(b.width()) * b.height();
+    const std::size_t pixels = b.area();
     colour.assign(pixels, glm::dvec3(0.0));
     covered.assign(pixels, 0.0);
     depth.assign(pixels, 0.0);
@@ -168,7 +168,7 @@ void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector
         area += a;
         motion += a * e.motion;
         depth += a * e.depth;
-        const Bounds2 b = e.polygon.bounds();
+        const RasterBounds b = e.polygon.bounds();
         lo = glm::min(lo, b.lo);
         hi = glm::max(hi, b.hi);
         if (a > largest) {
@@ -217,17 +217,16 @@ void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector
 // Sweep: adds the tile's swept polygons into `out`, sized to the pixels their footprints reach (within
 // sweep.box, which bounds them). Sizing it by sweep.box alone allocated and cleared up to a film's worth
 // of pixels per tile and subframe when a fast fragment made the bound large (a dolly with few re-clips).
-void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipScratch& scratch, TileSums& out) {
-    Tile box = tile;
+void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, const ReclipScratch& scratch, TileSums& out) {
+    PixelBounds box = tile;
     for (const SweptPolygon& p : scratch.swept) {
-        const Bounds2 b = sweptBounds(p.polygon, p.path, p.positions);
+        const RasterBounds b = sweptBounds(p.polygon, p.path, p.positions);
         box.x0 = std::min(box.x0, static_cast<int>(std::floor(b.lo.x)));
         box.y0 = std::min(box.y0, static_cast<int>(std::floor(b.lo.y)));
         box.x1 = std::max(box.x1, static_cast<int>(std::ceil(b.hi.x)));
         box.y1 = std::max(box.y1, static_cast<int>(std::ceil(b.hi.y)));
     }
-    box = {std::max(box.x0, sweep.box.x0), std::max(box.y0, sweep.box.y0), std::min(box.x1, sweep.box.x1),
-           std::min(box.y1, sweep.box.y1)};
+    box = box.intersect(sweep.box);
     out.reset(box);
     const auto addObjects = [&](std::size_t i, double w, const PolygonObjects& objects) {
         for (int k = 0; k < objects.count; ++k)
@@ -238,15 +237,15 @@ void accumulateSwept(const SweepInterval& sweep, const Tile& tile, const ReclipS
         // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
         if (!p.coverage) {
             forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w) {
-                if (!out.contains(x, y)) return;
-                out.colour[out.index(x, y)] += w * p.colour;
-                if (out.track_objects) addObjects(out.index(x, y), w, p.objects);
+                if (!out.box.contains(x, y)) return;
+                out.colour[out.box.index(x, y)] += w * p.colour;
+                if (out.track_objects) addObjects(out.box.index(x, y), w, p.objects);
             });
             continue;
         }
         forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w) {
-            if (!out.contains(x, y)) return;
-            const std::size_t i = out.index(x, y);
+            if (!out.box.contains(x, y)) return;
+            const std::size_t i = out.box.index(x, y);
             out.colour[i] += w * p.colour;
             if (out.track_objects) addObjects(i, w, p.objects);
             out.covered[i] += w;
@@ -274,7 +273,7 @@ IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, do
 }
 
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
-                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const Tile& tile,
+                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const PixelBounds& tile,
                     const SweepInterval* sweep, bool audit, ReclipScratch& scratch, TileSums& out,
                     ReclipStats& stats) {
     scratch.screen.clear();
@@ -287,9 +286,8 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
 
     // Sweep: each screen triangle's stretch, computed when a fragment first needs it (NaN: not yet).
     if (sweep) scratch.stretch.assign(scratch.screen.size(), glm::dvec4(std::numeric_limits<double>::quiet_NaN()));
-    const Tile region = sweep ? sweep->resolve : tile;
-    resolveTile(scratch.screen, {region.x0, region.y0, region.width(), region.height()}, {}, scratch.tile,
-                scratch.fragments);
+    const PixelBounds region = sweep ? sweep->resolve : tile;
+    resolveTile(scratch.screen, region, {}, scratch.tile, scratch.fragments);
     if (audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
     if (!sweep) out.reset(tile);
     scratch.swept.clear();
@@ -367,7 +365,7 @@ void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapsh
                                  area * objects.shares[static_cast<std::size_t>(k)].coverage);
                 };
                 if (!sweep) {
-                    add(out.index(x, y), fragment.area);
+                    add(out.box.index(x, y), fragment.area);
                     continue;
                 }
                 std::optional<SweepPath> path =

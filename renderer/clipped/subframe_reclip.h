@@ -39,7 +39,7 @@ struct FragmentLayers {
 // One subframe's pixel values over a box of pixels (box-local, row-major), before the background is
 // added. The box is the tile, or with sweep integration the tile and the margin its fragments reach.
 struct TileSums {
-    Tile box;
+    PixelBounds box;
     std::vector<glm::dvec3> colour;
     std::vector<double> covered;
     std::vector<double> depth;
@@ -47,11 +47,7 @@ struct TileSums {
     bool track_objects = false;         // set before reclipSubframe: fill `objects` (ID mattes)
     std::vector<ObjectShares> objects;  // per object its covered area, as `covered` sums all of them
 
-    void reset(const Tile& box);
-    bool contains(int x, int y) const { return x >= box.x0 && x < box.x1 && y >= box.y0 && y < box.y1; }
-    std::size_t index(int x, int y) const {
-        return static_cast<std::size_t>(y - box.y0) * box.width() + (x - box.x0);
-    }
+    void reset(const PixelBounds& box);
 };
 
 // A turning camera over a sweep interval [begin, end]: its turn from the middle to each of `positions`
@@ -78,8 +74,8 @@ struct SweepInterval {
     // A path reaching farther than reach / 2 (px) from t is not swept: the fragment stays a point sample
     // at t. The tile plan bounds every path by it; only paths it could not measure (camera plane) exceed it.
     double reach = 0.0;
-    Tile resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
-    Tile box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
+    PixelBounds resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
+    PixelBounds box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
     // A turning camera's turns over the interval, shared by its tiles; null when it does not turn.
     const IntervalTurns* turns = nullptr;
     // Per object, its motion group (MotionPlan::groups): a pixel's fragments of one group move alike.
@@ -154,7 +150,7 @@ struct ReclipStats {
 // saw it, and reduces each pixel. With `sweep` the fragments of sweep->resolve are swept over the
 // interval into sweep->box; without, the tile's pixels get the point sample at the snapshot's time.
 void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
-                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const Tile& tile,
+                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const PixelBounds& tile,
                     const SweepInterval* sweep, bool audit, ReclipScratch& scratch, TileSums& out,
                     ReclipStats& stats);
 

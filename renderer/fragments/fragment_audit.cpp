@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <unordered_map>
@@ -170,10 +171,17 @@ void AuditStats::merge(const AuditStats& other) {
     worst_coverage = std::max(worst_coverage, other.worst_coverage);
 }
 
+std::string AuditStats::worstText() const {
+    char text[160];
+    std::snprintf(text, sizeof text, "outside %.3g px, overlap %.3g px^2, coverage %.3g px^2", worst_outside,
+                  worst_overlap, worst_coverage);
+    return text;
+}
+
 void auditTile(std::span<const ScreenTriangle> triangles, const FragmentTile& tile, AuditStats& stats,
                const AuditTolerance& tolerance) {
-    const TileRect& rect = tile.rect;
-    const std::size_t npix = std::size_t(std::max(rect.width, 0)) * std::max(rect.height, 0);
+    const PixelBounds& rect = tile.rect;
+    const std::size_t npix = rect.area();
     std::vector<std::vector<std::uint32_t>> inputs(npix);
     std::unordered_map<std::uint32_t, std::uint32_t> by_source;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
@@ -188,19 +196,19 @@ void auditTile(std::span<const ScreenTriangle> triangles, const FragmentTile& ti
             hiy = std::max(hiy, v.y);
         }
         const int x0 = std::max(rect.x0, int(std::floor(std::max(lox, double(rect.x0)))));
-        const int x1 = std::min(rect.x0 + rect.width - 1, int(std::floor(std::min(hix, double(rect.x0 + rect.width)))));
+        const int x1 = std::min(rect.x1 - 1, int(std::floor(std::min(hix, double(rect.x1)))));
         const int y0 = std::max(rect.y0, int(std::floor(std::max(loy, double(rect.y0)))));
-        const int y1 = std::min(rect.y0 + rect.height - 1, int(std::floor(std::min(hiy, double(rect.y0 + rect.height)))));
+        const int y1 = std::min(rect.y1 - 1, int(std::floor(std::min(hiy, double(rect.y1)))));
         for (int y = y0; y <= y1; ++y)
             for (int x = x0; x <= x1; ++x)
-                inputs[std::size_t(y - rect.y0) * rect.width + (x - rect.x0)].push_back(std::uint32_t(i));
+                inputs[rect.index(x, y)].push_back(std::uint32_t(i));
     }
 
     std::vector<Polygon> pieces;
     std::vector<Polygon> covers;
-    for (int y = rect.y0; y < rect.y0 + rect.height; ++y) {
-        for (int x = rect.x0; x < rect.x0 + rect.width; ++x) {
-            const std::size_t i = std::size_t(y - rect.y0) * rect.width + (x - rect.x0);
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            const std::size_t i = rect.index(x, y);
             const glm::dvec2 corner(x, y);
             PixelAudit audit(x, y, stats);
             ++stats.pixels;

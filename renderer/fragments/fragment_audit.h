@@ -30,6 +30,16 @@ struct AuditStats {
     std::string first_violation;   // "pixel (x, y): what"; the least such message, so it is deterministic
 
     void merge(const AuditStats& other);
+    template <class Fields>
+    void fields(Fields& f) const {
+        f.count("pixels", pixels);
+        f.count("union_pixels", union_pixels);
+        f.count("union_skipped", union_skipped);
+        f.count("violations", violations);
+        f.info("worst", worstText());
+    }
+    std::string worstText() const;  // "outside 0 px, overlap 0 px^2, coverage 0 px^2"
+    friend bool operator==(const AuditStats&, const AuditStats&) = default;
 };
 
 // Checks a tile resolved by resolveTile against its input triangles, with computations that share no

@@ -5,9 +5,9 @@
 
 namespace clipblur {
 
-void resolveTile(std::span<const ScreenTriangle> triangles, const TileRect& rect, const ResolverSettings& settings,
+void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& rect, const ResolverSettings& settings,
                  TileScratch& scratch, FragmentTile& out) {
-    const std::size_t npix = std::size_t(std::max(rect.width, 0)) * std::max(rect.height, 0);
+    const std::size_t npix = rect.area();
     out.rect = rect;
     out.offsets.assign(npix + 1, 0);
     out.fragments.clear();
@@ -30,17 +30,17 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const TileRect& rect
             loy = std::min(loy, t.raster[i].y);
             hiy = std::max(hiy, t.raster[i].y);
         }
-        if (!(hix >= rect.x0 && lox <= rect.x0 + rect.width && hiy >= rect.y0 && loy <= rect.y0 + rect.height)) {
+        if (!(hix >= rect.x0 && lox <= rect.x1 && hiy >= rect.y0 && loy <= rect.y1)) {
             continue;
         }
         const int x_begin = std::max(rect.x0, int(std::floor(std::max(lox, double(rect.x0)))));
-        const int x_end = std::min(rect.x0 + rect.width - 1, int(std::floor(std::min(hix, double(rect.x0 + rect.width)))));
+        const int x_end = std::min(rect.x1 - 1, int(std::floor(std::min(hix, double(rect.x1)))));
         const int y_begin = std::max(rect.y0, int(std::floor(std::max(loy, double(rect.y0)))));
-        const int y_end = std::min(rect.y0 + rect.height - 1, int(std::floor(std::min(hiy, double(rect.y0 + rect.height)))));
+        const int y_end = std::min(rect.y1 - 1, int(std::floor(std::min(hiy, double(rect.y1)))));
         const double nearest = std::max({t.inv_depth[0], t.inv_depth[1], t.inv_depth[2]});
         for (int y = y_begin; y <= y_end; ++y) {
             for (int x = x_begin; x <= x_end; ++x) {
-                const auto pixel = std::uint32_t(std::size_t(y - rect.y0) * rect.width + (x - rect.x0));
+                const auto pixel = std::uint32_t(rect.index(x, y));
                 scratch.entries.push_back({pixel, std::uint32_t(ti), nearest});
             }
         }
@@ -69,8 +69,8 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const TileRect& rect
         std::sort(begin, end, [](const TileScratch::Entry& a, const TileScratch::Entry& b) {
             return a.nearest != b.nearest ? a.nearest > b.nearest : a.triangle < b.triangle;
         });
-        const int x = rect.x0 + int(i % rect.width);
-        const int y = rect.y0 + int(i / rect.width);
+        const int x = rect.x0 + int(i % rect.width());
+        const int y = rect.y0 + int(i / rect.width());
         resolver.reset(x, y);
         for (auto it = begin; it != end; ++it) resolver.insert(triangles[it->triangle]);
         const auto& frags = resolver.fragments();

@@ -7,21 +7,14 @@
 #include "renderer/fragments/fragment.h"
 #include "renderer/fragments/pixel_resolver.h"
 #include "renderer/fragments/screen_triangle.h"
+#include "scene/pixel_bounds.h"
 
 namespace clipblur {
-
-// A rectangle of pixels [x0, x0+width) x [y0, y0+height).
-struct TileRect {
-    int x0 = 0;
-    int y0 = 0;
-    int width = 0;
-    int height = 0;
-};
 
 // Per-pixel fragment lists of a tile in CSR form: the fragments of pixel (x, y) are
 // fragments[offsets[i]] .. fragments[offsets[i+1]-1] with i = (y - y0) * width + (x - x0).
 struct FragmentTile {
-    TileRect rect;
+    PixelBounds rect;
     std::vector<std::uint32_t> offsets;
     std::vector<Fragment> fragments;
     std::vector<double> covered_area;  // per pixel, px^2
@@ -29,7 +22,7 @@ struct FragmentTile {
     double dropped_area = 0.0;         // slivers below ResolverSettings::min_area, summed over the tile
 
     std::span<const Fragment> pixel(int x, int y) const {
-        const std::size_t i = std::size_t(y - rect.y0) * rect.width + (x - rect.x0);
+        const std::size_t i = rect.index(x, y);
         return {fragments.data() + offsets[i], fragments.data() + offsets[i + 1]};
     }
 };
@@ -50,7 +43,7 @@ struct TileScratch {
 // Bins triangles to the tile's pixels by bounding box, then per pixel inserts them front to back (nearest
 // vertex first, ties by triangle index) into a PixelResolver. Both frame-0/1 visibility and the subframe
 // re-clip of propagated fragments call this. Deterministic: the result depends only on the inputs.
-void resolveTile(std::span<const ScreenTriangle> triangles, const TileRect& rect, const ResolverSettings& settings,
+void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& rect, const ResolverSettings& settings,
                  TileScratch& scratch, FragmentTile& out);
 
 }  // namespace clipblur

@@ -89,7 +89,7 @@ void PixelResolver::insertPolygon(const ConvexPolygon& local, const DepthPlane& 
     while (!work_.empty()) {
         const Work w = work_.back();
         work_.pop_back();
-        const Bounds2 box = w.poly.bounds();
+        const RasterBounds box = w.poly.bounds();
         bool consumed = false;
         for (std::size_t qi = w.start; qi < pieces_.size() && !consumed; ++qi) {
             const Piece& q = pieces_[qi];

@@ -50,7 +50,7 @@ public:
 private:
     struct Piece {
         ConvexPolygon poly;  // pixel-local
-        Bounds2 box;
+        RasterBounds box;
         DepthPlane plane;  // pixel-local inverse depth of sources[0]
         double area = 0.0;
         std::array<FragmentSource, 2> sources{};

@@ -46,8 +46,8 @@ double ConvexPolygon::area() const {
     return 0.5 * sum.value();
 }
 
-Bounds2 ConvexPolygon::bounds() const {
-    Bounds2 b{v[0], v[0]};
+RasterBounds ConvexPolygon::bounds() const {
+    RasterBounds b{v[0], v[0]};
     for (int i = 1; i < n; ++i) {
         b.lo = glm::min(b.lo, v[i]);
         b.hi = glm::max(b.hi, v[i]);

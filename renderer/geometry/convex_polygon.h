@@ -5,6 +5,8 @@
 
 #include <glm/vec2.hpp>
 
+#include "renderer/geometry/raster_bounds.h"
+
 namespace clipblur {
 
 // Working capacity of a convex polygon. Stored pieces are kept at or below kMaxStoredVertices (by
@@ -12,16 +14,6 @@ namespace clipblur {
 // below this bound: 12 + 12 + 1 <= 32.
 inline constexpr int kMaxPolygonVertices = 32;
 inline constexpr int kMaxStoredVertices = 12;
-
-struct Bounds2 {
-    glm::dvec2 lo{0.0};
-    glm::dvec2 hi{0.0};
-
-    // Closed-box test; touching boxes count as overlapping so callers never skip a real overlap.
-    bool overlaps(const Bounds2& o) const {
-        return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y;
-    }
-};
 
 // A convex polygon with counter-clockwise vertices (positive orient2d; in raster space, where y points
 // down, that is visually clockwise). Fixed capacity so the hot path never allocates.
@@ -45,7 +37,7 @@ struct ConvexPolygon {
     bool degenerate() const { return n < 3; }
     // Signed area (positive for counter-clockwise), shoelace about v[0] with compensated summation.
     double area() const;
-    Bounds2 bounds() const;
+    RasterBounds bounds() const;
     // Twice the signed area of the triangle formed by edge i (v[i] -> v[i+1]) and point p.
     double edgeSide(int i, const glm::dvec2& p) const;
 };

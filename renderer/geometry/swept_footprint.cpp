@@ -89,9 +89,9 @@ void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions
     forEachSweptCell(q, path, positions, [&](int x, int y, double w) { out.push_back({x, y, w}); });
 }
 
-Bounds2 sweptBounds(const ConvexPolygon& q, const SweepPath& path, int positions) {
-    const Bounds2 box = q.bounds();
-    Bounds2 out{glm::dvec2(std::numeric_limits<double>::infinity()), glm::dvec2(-std::numeric_limits<double>::infinity())};
+RasterBounds sweptBounds(const ConvexPolygon& q, const SweepPath& path, int positions) {
+    const RasterBounds box = q.bounds();
+    RasterBounds out;
     const int m = std::max(1, positions);
     // Per axis, a bound's moved coordinate is pivot + N(s) / W(s), N and W quadratics in s:
     //     N(s) = r + s (chord + r stretch_chord) + 4 s^2 (bend + r stretch_bend),  r = bound - pivot.

@@ -111,7 +111,7 @@ void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions
 
 // Raster bounds of every position's moved polygon (for sizing the pixels a footprint can reach): tight
 // without turns; with them, from the hull reach() uses and the stretch's range, with the same margins.
-Bounds2 sweptBounds(const ConvexPolygon& q, const SweepPath& path, int positions);
+RasterBounds sweptBounds(const ConvexPolygon& q, const SweepPath& path, int positions);
 
 namespace swept_detail {
 
@@ -219,7 +219,7 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
     const double scale = 1.0 / m;
     // A stretch along the raster axes keeps an axis-aligned rectangle axis-aligned.
     if (axisAlignedRectangle(q)) {
-        const Bounds2 box = q.bounds();
+        const RasterBounds box = q.bounds();
         for (int k = 0; k < m; ++k) {
             glm::dvec2 offset, stretch;
             path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);

@@ -9,27 +9,6 @@
 
 namespace clipblur {
 
-RasterBox RasterBox::everything() {
-    const double inf = std::numeric_limits<double>::infinity();
-    return {glm::dvec2(-inf), glm::dvec2(inf)};
-}
-
-void RasterBox::expand(const glm::dvec2& p) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-}
-
-void RasterBox::pad(double margin) {
-    if (empty()) return;
-    lo -= margin;
-    hi += margin;
-}
-
-bool RasterBox::overlaps(const RasterBox& other) const {
-    if (empty() || other.empty()) return false;
-    return lo.x <= other.hi.x && other.lo.x <= hi.x && lo.y <= other.hi.y && other.lo.y <= hi.y;
-}
-
 namespace {
 
 void addKeyTimes(std::vector<double>& times, double t0, double t1, const auto& keys) {
@@ -181,7 +160,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         out.open_to_close = sourceMap(vertices[0]);
     }
     if (out.crosses_near) {
-        out.swept = RasterBox::everything();
+        out.swept = RasterBounds::everything();
     } else {
         out.swept.pad(max_speed * max_gap_);
         out.min_depth -= max_depth_rate * max_gap_;
@@ -218,7 +197,7 @@ int subframeCount(double pixels, int max_subframes, bool* capped) {
     return std::max(1, static_cast<int>(wanted));
 }
 
-SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBox& tile, int max_subframes) {
+SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBounds& tile, int max_subframes) {
     SubframePlan plan;
     for (const FragmentMotion& fragment : fragments) {
         if (!fragment.swept.overlaps(tile)) continue;

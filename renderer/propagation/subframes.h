@@ -6,26 +6,15 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/geometry/raster_bounds.h"
 #include "renderer/propagation/surface_path.h"
 #include "scene/scene.h"
 
 namespace clipblur {
 
-// Axis-aligned raster-space box; default constructed it is empty.
-struct RasterBox {
-    glm::dvec2 lo{std::numeric_limits<double>::infinity()};
-    glm::dvec2 hi{-std::numeric_limits<double>::infinity()};
-
-    static RasterBox everything();
-    bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y); }
-    void expand(const glm::dvec2& p);
-    void pad(double margin);
-    bool overlaps(const RasterBox& other) const;  // closed boxes: touching counts
-};
-
 // How one fragment (a convex polygon of surface points) moves over the shutter.
 struct FragmentMotion {
-    RasterBox swept;                // conservative bound of every raster position the fragment takes
+    RasterBounds swept;                // conservative bound of every raster position the fragment takes
     double max_path_pixels = 0.0;   // longest raster path of a vertex over the shutter
     // Peak raster speed of any vertex times the shutter length: equal subframes of this many keep every
     // vertex within a pixel per step. It is never below max_path_pixels and equals it for uniform speed.
@@ -113,7 +102,7 @@ struct SubframePlan {
 int subframeCount(double pixels, int max_subframes, bool* capped = nullptr);
 
 // Plans the tile from the fragments whose swept box overlaps it.
-SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBox& tile, int max_subframes);
+SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBounds& tile, int max_subframes);
 
 // Midpoint rule: subframe k of N at t0 + (k + 1/2)(t1 - t0)/N, each with weight 1/N.
 std::vector<double> subframeTimes(double t0, double t1, int count);

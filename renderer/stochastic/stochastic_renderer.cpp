@@ -63,8 +63,8 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     const CameraFrame camera_mid = camera_path.at(t_mid);
     // Tiles cover the render window only; every pixel's samples are keyed by its film position, so a
     // window renders exactly the pixels the whole film would.
-    const DataWindow window = renderWindow(job);
-    const TileGrid grid(window.width, window.height, job.render.tile_size);
+    const PixelBounds window = renderWindow(job);
+    const TileGrid grid(window.width(), window.height(), job.render.tile_size);
     const OutputSettings& out = job.output;
 
     RenderResult result;
@@ -97,7 +97,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                 cancelled = true;
                 continue;
             }
-            const Tile tile = grid.tile(task);
+            const PixelBounds tile = grid.tile(task);
             for (int y = window.y0 + tile.y0; y < window.y0 + tile.y1; ++y) {
                 for (int x = window.x0 + tile.x0; x < window.x0 + tile.x1; ++x) {
                     const std::size_t film_pixel = static_cast<std::size_t>(y) * width + x;
@@ -181,27 +181,23 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     });
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 
-    RenderStats& stats = result.stats;
-    stats.info["method"] = "stochastic";
-    stats.seconds["scene_build"] = build_seconds;
-    stats.seconds["render"] = secondsSince(render_start);
-    stats.seconds["total"] = secondsSince(start);
+    StochasticStats stats;
+    stats.scene_build_seconds = build_seconds;
+    stats.render_seconds = secondsSince(render_start);
     const EmbreeSceneStats& vs = visibility.stats();
-    stats.counts["frame"] = frame;
-    stats.counts["samples_per_pixel"] = samples;
-    stats.counts["samples"] = static_cast<long long>(window.width) * window.height * samples;
-    stats.counts["primary_rays"] = totals.primary_rays;
-    stats.counts["shadow_rays"] = totals.shadow_rays;
-    stats.counts["depth_rays"] = totals.depth_rays;
-    stats.counts["rays"] = totals.primary_rays + totals.shadow_rays + totals.depth_rays;
-    stats.counts["tiles"] = total_tiles;
-    stats.counts["threads"] = workerThreads();
-    stats.counts["triangles"] = vs.triangles;
-    stats.counts["dropped_triangles"] = vs.dropped_triangles;
-    stats.counts["moving_objects"] = vs.moving_objects;
-    stats.counts["capped_time_step_objects"] = vs.capped_objects;
-    stats.counts["max_time_steps"] = vs.max_time_steps;
-    stats.counts["vertex_evaluations"] = vs.vertex_evaluations;
+    stats.samples_per_pixel = samples;
+    stats.samples = static_cast<long long>(window.area()) * samples;
+    stats.primary_rays = totals.primary_rays;
+    stats.shadow_rays = totals.shadow_rays;
+    stats.depth_rays = totals.depth_rays;
+    stats.tiles = total_tiles;
+    stats.triangles = vs.triangles;
+    stats.dropped_triangles = vs.dropped_triangles;
+    stats.moving_objects = vs.moving_objects;
+    stats.capped_time_step_objects = vs.capped_objects;
+    stats.max_time_steps = vs.max_time_steps;
+    stats.vertex_evaluations = vs.vertex_evaluations;
+    result.stats.method = stats;
     return result;
 }
 

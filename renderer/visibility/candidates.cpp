@@ -48,7 +48,7 @@ double thinDiameter(int rays_per_side) { return std::sqrt(2.0) / rays_per_side; 
 
 }  // namespace
 
-bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binned, const Tile& tile,
+bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binned, const PixelBounds& tile,
                 int rays_per_side) {
     if (rays_per_side <= 0) return false;
     const double pixels = static_cast<double>(tile.width()) * tile.height();
@@ -69,7 +69,7 @@ bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binne
 }
 
 void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const MeshAdjacency& adjacency,
-                    const Projection& projection, const Tile& tile, int tile_index, int rays_per_side,
+                    const Projection& projection, const PixelBounds& tile, int tile_index, int rays_per_side,
                     CandidateScratch& scratch, std::vector<std::uint32_t>& out, CandidateStats& stats) {
     out.clear();
     const auto binned = frame.tileTriangles(tile_index);

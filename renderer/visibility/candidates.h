@@ -39,6 +39,16 @@ struct CandidateStats {
     long long candidates = 0;     // screen triangles handed to the clipper
     long long binned = 0;         // screen triangles whose box overlaps the tile (the exhaustive set)
     long long exhaustive_tiles = 0;  // tiles where rays were asked for but would cost more than they cull
+
+    template <class Fields>
+    void fields(Fields& f) const {
+        f.count("rays", rays);
+        f.count("hit_triangles", hit_triangles);
+        f.count("candidates", candidates);
+        f.count("binned_triangles", binned);
+        f.count("exhaustive_tiles", exhaustive_tiles);
+    }
+    friend bool operator==(const CandidateStats&, const CandidateStats&) = default;
 };
 
 struct CandidateScratch {
@@ -52,7 +62,7 @@ struct CandidateScratch {
 // per triangle, against the tile's pixels once (what is visible is clipped either way) plus the rays.
 // A wall of a few large triangles has nothing to cull, a mesh of sub-pixel triangles neither (all
 // thin); many pixel-sized triangles or large ones stacked in depth have. False for rays_per_side <= 0.
-bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binned, const Tile& tile,
+bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binned, const PixelBounds& tile,
                 int rays_per_side);
 
 // The screen triangles of `tile` that the clipper must see at the frame's time.
@@ -65,7 +75,7 @@ bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binne
 // rays at any angle). What this can still miss is a large triangle seen only through a gap narrower
 // than the ray spacing and not adjacent to a hit; docs/design.md measures it.
 void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const MeshAdjacency& adjacency,
-                    const Projection& projection, const Tile& tile, int tile_index, int rays_per_side,
+                    const Projection& projection, const PixelBounds& tile, int tile_index, int rays_per_side,
                     CandidateScratch& scratch, std::vector<std::uint32_t>& out, CandidateStats& stats);
 
 }  // namespace clipblur

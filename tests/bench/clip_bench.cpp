@@ -88,7 +88,7 @@ void BM_ResolveTile(benchmark::State& state) {
     TileScratch scratch;
     FragmentTile tile;
     for (auto _ : state) {
-        resolveTile(tris, {0, 0, 64, 64}, {}, scratch, tile);
+        resolveTile(tris, PixelBounds::sized(0, 0, 64, 64), {}, scratch, tile);
         benchmark::DoNotOptimize(tile.fragments.data());
     }
     state.counters["pixels/s"] = benchmark::Counter(4096.0 * double(state.iterations()), benchmark::Counter::kIsRate);

@@ -45,8 +45,8 @@ void BM_StochasticFrame(benchmark::State& state) {
     double steps = 0;
     for (auto _ : state) {
         const RenderResult r = renderFrame(job, 0);
-        rays += r.stats.counts.at("rays");
-        steps = static_cast<double>(r.stats.counts.at("max_time_steps"));
+        rays += r.stats.stochastic().rays();
+        steps = static_cast<double>(r.stats.stochastic().max_time_steps);
     }
     state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
     state.counters["triangles"] = 2.0 * state.range(0) * state.range(0);

@@ -120,8 +120,8 @@ TEST_P(RenderTileCommand, MergedShardsEqualTheWholeRender) {
             ASSERT_EQ(renderShard(dir, method, frame, shard), 0) << readText(dir / "stderr.txt");
             const fs::path shard_path = shardPath(frame.string(), shard);
             const StoredImage stored = readStored(shard_path);
-            const DataWindow w = shardWindow(kWidth, kHeight, shard);
-            EXPECT_EQ((DataWindow{stored.spec.x, stored.spec.y, stored.spec.width, stored.spec.height}), w);
+            const PixelBounds w = shardWindow(kWidth, kHeight, shard);
+            EXPECT_EQ(PixelBounds::sized(stored.spec.x, stored.spec.y, stored.spec.width, stored.spec.height), w);
             EXPECT_EQ(stored.spec.get_int_attribute(std::string(kTileIndexKey), -1), index);
             EXPECT_EQ(stored.spec.get_int_attribute(std::string(kTileCountKey), -1), count);
             EXPECT_TRUE(fs::exists(dir / frame.parent_path().filename() /

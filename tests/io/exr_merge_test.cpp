@@ -38,8 +38,8 @@ static void packPixel(std::byte* dst, int x, int y) {
 }
 
 static void writeShard(const std::string& framePath, int width, int height, TileShard shard, const std::string& hash) {
-    const DataWindow w = shardWindow(width, height, shard);
-    OIIO::ImageSpec spec(w.width, w.height, 5, OIIO::TypeDesc::HALF);
+    const PixelBounds w = shardWindow(width, height, shard);
+    OIIO::ImageSpec spec(w.width(), w.height(), 5, OIIO::TypeDesc::HALF);
     spec.channelformats = {OIIO::TypeHalf, OIIO::TypeHalf, OIIO::TypeHalf, OIIO::TypeHalf, OIIO::TypeFloat};
     spec.channelnames = kChannels;
     spec.z_channel = 4;
@@ -51,10 +51,10 @@ static void writeShard(const std::string& framePath, int width, int height, Tile
     spec.attribute(std::string(kTileIndexKey), shard.index);
     spec.attribute(std::string(kTileCountKey), shard.count);
     spec.attribute("clipblur:method", "stochastic");
-    std::vector<std::byte> pixels(kPixelBytes * static_cast<std::size_t>(w.width * w.height));
-    for (int y = 0; y < w.height; ++y)
-        for (int x = 0; x < w.width; ++x)
-            packPixel(pixels.data() + kPixelBytes * static_cast<std::size_t>(y * w.width + x), w.x0 + x, w.y0 + y);
+    std::vector<std::byte> pixels(kPixelBytes * static_cast<std::size_t>(w.width() * w.height()));
+    for (int y = 0; y < w.height(); ++y)
+        for (int x = 0; x < w.width(); ++x)
+            packPixel(pixels.data() + kPixelBytes * static_cast<std::size_t>(y * w.width() + x), w.x0 + x, w.y0 + y);
     const std::string path = shardPath(framePath, shard);
     auto out = OIIO::ImageOutput::create(path);
     ASSERT_TRUE(out);
@@ -111,7 +111,7 @@ TEST_F(ExrMerge, CopiesStoredBitsIntoFullWindow) {
 TEST_F(ExrMerge, SingleShardRoundTrips) {
     writeShard(frame, 5, 4, {0, 1}, "h");
     mergeShards(frame, 1);
-    ImageExpectation full{5, 4, {0, 0, 5, 4}, "h", kChannels};
+    ImageExpectation full{5, 4, PixelBounds::sized(0, 0, 5, 4), "h", kChannels};
     EXPECT_TRUE(checkImage(frame, full).complete);
 }
 

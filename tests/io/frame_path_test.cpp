@@ -74,9 +74,13 @@ TEST(FramePath, RangesKeepTheJobsFrameLimits) {
 
 TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
     RenderStats stats;
-    stats.seconds["render"] = 0.5;
-    stats.counts["rays"] = 1234;
-    stats.info["method"] = "stochastic";
+    StochasticStats stochastic;
+    stochastic.render_seconds = 0.5;
+    stochastic.primary_rays = 1000;
+    stochastic.shadow_rays = 234;
+    stats.method = stochastic;
+    stats.warnings = {"one", "two"};
+    stats.reference = RenderStats::Reference{"ref.exr", 0.25, 0.5, 0.125};
     const auto path = std::filesystem::temp_directory_path() / "clipblur_stats_test" / "s.json";
     // 1e9 s after the epoch is 2001-09-09 01:46:40 UTC (a well-known timestamp).
     const StatsContext context{3, "x.exr", 2, "0123456789abcdef",
@@ -88,9 +92,15 @@ TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
     EXPECT_EQ(j.at("threads"), 2);
     EXPECT_EQ(j.at("config_hash"), "0123456789abcdef");
     EXPECT_EQ(j.at("start_time"), "2001-09-09T01:46:40Z");
-    EXPECT_EQ(j.at("counts").at("rays"), 1234);
+    EXPECT_EQ(j.at("counts").at("rays"), 1234) << "primary plus shadow rays";
+    EXPECT_EQ(j.at("counts").at("primary_rays"), 1000);
     EXPECT_EQ(j.at("seconds").at("render"), 0.5);
     EXPECT_EQ(j.at("info").at("method"), "stochastic");
+    EXPECT_EQ(j.at("info").at("warning"), "one; two");
+    EXPECT_EQ(j.at("info").at("reference"), "ref.exr");
+    EXPECT_EQ(j.at("error").at("rmse"), 0.25);
+    EXPECT_EQ(j.at("error").at("mean_abs"), 0.125);
+    EXPECT_FALSE(j.at("counts").contains("subframes_total")) << "only the method's own fields";
     EXPECT_GT(j.at("peak_memory_bytes").get<long long>(), 1 << 20);  // this process holds more than 1 MiB
 }
 

@@ -32,10 +32,7 @@ Image windowedImage() {
     Image image;
     image.width = 16;
     image.height = 12;
-    image.x0 = 3;
-    image.y0 = 2;
-    image.data_width = 5;
-    image.data_height = 4;
+    image.window = PixelBounds::sized(3, 2, 5, 4);
     const char* names[] = {"R", "G", "B", "A", "Z", "coverage", "motion.x", "motion.y"};
     for (int c = 0; c < 8; ++c) {
         Image::Channel channel{names[c], std::vector<float>(20)};

@@ -51,11 +51,11 @@ TEST(Shard, GridPicksSquarestBlocks) {
 
 TEST(Shard, WindowsOfUnevenFrameByHand) {
     // 10x7 in 2x2 blocks: columns split at floor(10/2) = 5, rows at floor(7/2) = 3.
-    EXPECT_EQ(shardWindow(10, 7, {0, 4}), (DataWindow{0, 0, 5, 3}));
-    EXPECT_EQ(shardWindow(10, 7, {1, 4}), (DataWindow{5, 0, 5, 3}));
-    EXPECT_EQ(shardWindow(10, 7, {2, 4}), (DataWindow{0, 3, 5, 4}));
-    EXPECT_EQ(shardWindow(10, 7, {3, 4}), (DataWindow{5, 3, 5, 4}));
-    EXPECT_EQ(shardWindow(10, 7, {0, 1}), (DataWindow{0, 0, 10, 7}));
+    EXPECT_EQ(shardWindow(10, 7, {0, 4}), PixelBounds::sized(0, 0, 5, 3));
+    EXPECT_EQ(shardWindow(10, 7, {1, 4}), PixelBounds::sized(5, 0, 5, 3));
+    EXPECT_EQ(shardWindow(10, 7, {2, 4}), PixelBounds::sized(0, 3, 5, 4));
+    EXPECT_EQ(shardWindow(10, 7, {3, 4}), PixelBounds::sized(5, 3, 5, 4));
+    EXPECT_EQ(shardWindow(10, 7, {0, 1}), PixelBounds::sized(0, 0, 10, 7));
 }
 
 TEST(Shard, TooManyTilesIsUsageError) {
@@ -84,16 +84,16 @@ TEST(Shard, RandomWindowsPartitionTheFrame) {
         std::vector<int> cover(static_cast<std::size_t>(w * h), 0);
         std::set<int> widths, heights;
         for (int i = 0; i < n; ++i) {
-            const DataWindow d = shardWindow(w, h, {i, n});
+            const PixelBounds d = shardWindow(w, h, {i, n});
             ASSERT_FALSE(d.empty());
             ASSERT_GE(d.x0, 0);
             ASSERT_GE(d.y0, 0);
-            ASSERT_LE(d.x0 + d.width, w);
-            ASSERT_LE(d.y0 + d.height, h);
-            widths.insert(d.width);
-            heights.insert(d.height);
-            for (int y = d.y0; y < d.y0 + d.height; ++y)
-                for (int x = d.x0; x < d.x0 + d.width; ++x) ++cover[static_cast<std::size_t>(y * w + x)];
+            ASSERT_LE(d.x0 + d.width(), w);
+            ASSERT_LE(d.y0 + d.height(), h);
+            widths.insert(d.width());
+            heights.insert(d.height());
+            for (int y = d.y0; y < d.y0 + d.height(); ++y)
+                for (int x = d.x0; x < d.x0 + d.width(); ++x) ++cover[static_cast<std::size_t>(y * w + x)];
         }
         for (int c : cover) ASSERT_EQ(c, 1) << w << "x" << h << " " << n;
         EXPECT_LE(*widths.rbegin() - *widths.begin(), 1);
@@ -109,9 +109,9 @@ TEST(Shard, PathTagGoesBeforeExtension) {
 }
 
 // A small EXR written directly with OpenImageIO, independent of the project's image writer.
-static void writeShard(const fs::path& path, int width, int height, const DataWindow& w, const std::string& hash,
+static void writeShard(const fs::path& path, int width, int height, const PixelBounds& w, const std::string& hash,
                        const std::vector<std::string>& channels = {"R", "G", "B", "A"}) {
-    OIIO::ImageSpec spec(w.width, w.height, static_cast<int>(channels.size()), OIIO::TypeDesc::HALF);
+    OIIO::ImageSpec spec(w.width(), w.height(), static_cast<int>(channels.size()), OIIO::TypeDesc::HALF);
     spec.x = w.x0;
     spec.y = w.y0;
     spec.full_x = 0;
@@ -120,7 +120,7 @@ static void writeShard(const fs::path& path, int width, int height, const DataWi
     spec.full_height = height;
     spec.channelnames = channels;
     spec.attribute(std::string(kConfigHashKey), hash);
-    std::vector<float> pixels(static_cast<std::size_t>(w.width * w.height) * channels.size());
+    std::vector<float> pixels(static_cast<std::size_t>(w.width() * w.height()) * channels.size());
     for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<float>(i % 97) / 8.0f;
     auto out = OIIO::ImageOutput::create(path.string());
     ASSERT_TRUE(out);
@@ -144,7 +144,7 @@ protected:
 
 TEST_F(ShardCheck, AcceptsMatchingShardAndRejectsEachMismatch) {
     const TileShard shard{2, 4};
-    const DataWindow w = shardWindow(40, 30, shard);
+    const PixelBounds w = shardWindow(40, 30, shard);
     const fs::path good = dir / "good.exr";
     writeShard(good, 40, 30, w, "abc");
     EXPECT_TRUE(shardIsComplete(good, 40, 30, shard, "abc", {"R", "G", "B", "A"}));
@@ -164,7 +164,7 @@ TEST_F(ShardCheck, AcceptsMatchingShardAndRejectsEachMismatch) {
 
 TEST_F(ShardCheck, TruncatedOrForeignFileIsIncomplete) {
     const TileShard shard{0, 1};
-    const DataWindow w{0, 0, 64, 64};
+    const PixelBounds w = PixelBounds::sized(0, 0, 64, 64);
     const fs::path good = dir / "full.exr";
     writeShard(good, 64, 64, w, "h", {"R", "G", "B", "A", "Z", "coverage"});
     ASSERT_TRUE(shardIsComplete(good, 64, 64, shard, "h"));

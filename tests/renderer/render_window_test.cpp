@@ -31,10 +31,10 @@ void expectSamePixels(const Image& whole, const Image& part, const std::string& 
     ASSERT_EQ(part.channels.size(), whole.channels.size()) << what;
     for (std::size_t c = 0; c < whole.channels.size(); ++c) {
         ASSERT_EQ(part.channels[c].name, whole.channels[c].name) << what;
-        ASSERT_EQ(part.channels[c].values.size(), static_cast<std::size_t>(part.data_width) * part.data_height);
+        ASSERT_EQ(part.channels[c].values.size(), part.window.area());
         int differing = 0;
-        for (int y = part.y0; y < part.y0 + part.data_height; ++y)
-            for (int x = part.x0; x < part.x0 + part.data_width; ++x)
+        for (int y = part.window.y0; y < part.window.y1; ++y)
+            for (int x = part.window.x0; x < part.window.x1; ++x)
                 differing += std::memcmp(&part.channels[c].values[part.index(x, y)],
                                          &whole.channels[c].values[whole.index(x, y)], sizeof(float)) != 0;
         EXPECT_EQ(differing, 0) << what << " channel " << whole.channels[c].name;
@@ -45,15 +45,15 @@ void expectSamePixels(const Image& whole, const Image& part, const std::string& 
 
 TEST(RenderWindow, DefaultIsTheWholeFilm) {
     RenderJob job = smallMovingJob("stochastic");
-    EXPECT_EQ(renderWindow(job), (DataWindow{0, 0, 67, 41}));
-    job.render.window = DataWindow{5, 6, 7, 8};
-    EXPECT_EQ(renderWindow(job), (DataWindow{5, 6, 7, 8}));
+    EXPECT_EQ(renderWindow(job), PixelBounds::sized(0, 0, 67, 41));
+    job.render.window = PixelBounds::sized(5, 6, 7, 8);
+    EXPECT_EQ(renderWindow(job), PixelBounds::sized(5, 6, 7, 8));
 }
 
 TEST(RenderWindow, WindowOutsideTheFilmIsARenderError) {
     RenderJob job = smallMovingJob("stochastic");
-    for (const DataWindow w : {DataWindow{0, 0, 0, 5}, DataWindow{-1, 0, 5, 5}, DataWindow{60, 0, 8, 5},
-                               DataWindow{0, 40, 5, 2}}) {
+    for (const PixelBounds w : {PixelBounds::sized(0, 0, 0, 5), PixelBounds::sized(-1, 0, 5, 5), PixelBounds::sized(60, 0, 8, 5),
+                               PixelBounds::sized(0, 40, 5, 2)}) {
         job.render.window = w;
         try {
             renderFrame(job, 0);
@@ -71,15 +71,15 @@ class WindowedMethod : public ::testing::TestWithParam<std::string> {};
 TEST_P(WindowedMethod, ShardWindowsEqualTheWholeRender) {
     RenderJob job = smallMovingJob(GetParam());
     const Image whole = renderFrame(job, 0).image;
-    ASSERT_EQ(whole.window(), (DataWindow{0, 0, 67, 41}));
+    ASSERT_EQ(whole.window, PixelBounds::sized(0, 0, 67, 41));
     for (const int count : {3, 4}) {
         for (int index = 0; index < count; ++index) {
-            const DataWindow w = shardWindow(67, 41, {index, count});
+            const PixelBounds w = shardWindow(67, 41, {index, count});
             job.render.window = w;
             const Image part = renderFrame(job, 0).image;
             EXPECT_EQ(part.width, 67);
             EXPECT_EQ(part.height, 41);
-            EXPECT_EQ(part.window(), w);
+            EXPECT_EQ(part.window, w);
             expectSamePixels(whole, part, GetParam() + " shard " + std::to_string(index) + "/" + std::to_string(count));
         }
     }

@@ -110,7 +110,7 @@ TEST(TileGrid, TilesCoverEveryPixelExactlyOnce) {
         const TileGrid grid(w, h, size);
         std::vector<int> hits(static_cast<std::size_t>(w * h), 0);
         for (int i = 0; i < grid.count(); ++i) {
-            const Tile t = grid.tile(i);
+            const PixelBounds t = grid.tile(i);
             EXPECT_GT(t.width(), 0);
             EXPECT_GT(t.height(), 0);
             for (int y = t.y0; y < t.y1; ++y)

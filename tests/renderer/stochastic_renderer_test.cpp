@@ -16,7 +16,7 @@ namespace clipblur {
 namespace {
 
 float at(const Image& image, const char* channel, int x, int y) {
-    return image.find(channel)->values[static_cast<std::size_t>(y * image.data_width + x)];
+    return image.find(channel)->values[static_cast<std::size_t>(y * image.window.width() + x)];
 }
 
 // Exact area of the unit pixel [x, x+1) x [y, y+1) where a*px + b*py + c > 0: Sutherland-Hodgman clip of
@@ -215,9 +215,9 @@ TEST(StochasticRenderer, BitIdenticalForOneAndTwoThreads) {
         ASSERT_EQ(a.size(), b.size());
         EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << one.image.channels[c].name;
     }
-    EXPECT_EQ(one.stats.counts.at("rays"), two.stats.counts.at("rays"));
-    EXPECT_GT(one.stats.counts.at("shadow_rays"), 0);
-    EXPECT_EQ(one.stats.counts.at("primary_rays"), 48LL * 32 * 9);
+    EXPECT_EQ(one.stats.stochastic().rays(), two.stats.stochastic().rays());
+    EXPECT_GT(one.stats.stochastic().shadow_rays, 0);
+    EXPECT_EQ(one.stats.stochastic().primary_rays, 48LL * 32 * 9);
 }
 
 TEST(StochasticRenderer, ReportsProgressPerTileAndStopsWhenCancelled) {

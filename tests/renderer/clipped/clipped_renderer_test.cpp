@@ -63,7 +63,7 @@ TEST(ClippedRenderer, StillRectangleHasExactPixelCoverage) {
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) expected[y * 32 + x] = rectCoverage(x, y, x0, y0, x1, y1);
     EXPECT_LT(maxError(r, expected), kFloatTolerance);
-    EXPECT_EQ(r.stats.counts.at("subframes_total"), 0) << "nothing moves: no subframes";
+    EXPECT_EQ(r.stats.clipped().subframes_total, 0) << "nothing moves: no subframes";
 }
 
 TEST(ClippedRenderer, StillTriangleMatchesIndependentPolygonClip) {
@@ -130,7 +130,7 @@ TEST(ClippedRenderer, TranslatingQuadConvergesToExactTimeIntegratedCoverage) {
     RenderJob job = clippedJob();
     job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
     const RenderResult r = renderFrame(job, 0);
-    EXPECT_EQ(r.stats.counts.at("subframes_max_per_tile"), 12) << "ceil(|v|) = ceil(11.99)";
+    EXPECT_EQ(r.stats.clipped().subframes_max_per_tile, 12) << "ceil(|v|) = ceil(11.99)";
     EXPECT_LT(maxError(r, expected), bound(12));
 }
 
@@ -140,10 +140,10 @@ TEST(ClippedRenderer, StaticSceneIsTheSameWithAnySubframeCount) {
     job.scene.objects.push_back(rasterQuad(8.2, 9.9, 16.4, 30.2, 3.0));
     const RenderResult still = renderFrame(job, 0);
     // Nothing moves: one fragment set at shutter open, no closing set, no subframes anywhere.
-    EXPECT_GT(still.stats.counts.at("open_fragments"), 0);
-    EXPECT_EQ(still.stats.counts.at("close_fragments"), 0);
-    EXPECT_EQ(still.stats.counts.at("subframes_total"), 0);
-    EXPECT_EQ(still.stats.counts.at("still_tiles"), still.stats.counts.at("tiles"));
+    EXPECT_GT(still.stats.clipped().open.fragments, 0);
+    EXPECT_EQ(still.stats.clipped().close.fragments, 0);
+    EXPECT_EQ(still.stats.clipped().subframes_total, 0);
+    EXPECT_EQ(still.stats.clipped().still_tiles, still.stats.clipped().tiles);
     for (int n : {1, 2, 5}) {
         job.render.subframes = n;
         const RenderResult r = renderFrame(job, 0);
@@ -193,9 +193,9 @@ TEST(ClippedRenderer, BitIdenticalForOneAndTwoThreads) {
     for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
         EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
     // squareFilmJob turns the fragment audit on: every frame and subframe tile was checked.
-    EXPECT_GE(results[0].stats.counts.at("audit_pixels"), 3 * 32 * 32);
-    EXPECT_GT(results[0].stats.counts.at("audit_union_pixels"), 0);
-    EXPECT_EQ(results[0].stats.counts.at("audit_violations"), 0);
+    EXPECT_GE(results[0].stats.clipped().audit->pixels, 3 * 32 * 32);
+    EXPECT_GT(results[0].stats.clipped().audit->union_pixels, 0);
+    EXPECT_EQ(results[0].stats.clipped().audit->violations, 0);
 }
 
 }  // namespace clipblur

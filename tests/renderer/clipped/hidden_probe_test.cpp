@@ -117,8 +117,8 @@ TEST(HiddenProbe, AutoSegmentsDrawTheWallBothEndsHide) {
     const RenderResult automatic = renderFrame(job, 0);
     job.render.segments = 2;
     const RenderResult two = renderFrame(job, 0);
-    EXPECT_EQ(automatic.stats.counts.at("segments"), 2);
-    EXPECT_EQ(automatic.stats.counts.at("hidden_probe_hits"), 64);
+    EXPECT_EQ(automatic.stats.clipped().segments, 2);
+    EXPECT_EQ(automatic.stats.clipped().hidden_probe_hits, 64);
     const auto error = [](const RenderResult& r) {
         double squared = 0.0, worst = 0.0;
         for (const char* name : {"R", "G", "B"}) {
@@ -144,10 +144,10 @@ TEST(HiddenProbe, SegmentsLeftHidingSomethingAtTheCapAreWarnedAbout) {
     RenderJob job = crossingJob();
     job.render.max_segments = 1;
     const RenderResult capped = renderFrame(job, 0);
-    EXPECT_EQ(capped.stats.counts.at("segments"), 1);
-    EXPECT_EQ(capped.stats.counts.at("hidden_probe_hits"), 64);
-    ASSERT_EQ(capped.stats.info.count("warning"), 1u);
-    EXPECT_NE(capped.stats.info.at("warning").find("1 shutter segments still hide a surface"), std::string::npos);
+    EXPECT_EQ(capped.stats.clipped().segments, 1);
+    EXPECT_EQ(capped.stats.clipped().hidden_probe_hits, 64);
+    ASSERT_EQ(capped.stats.warnings.size(), 1u);
+    EXPECT_NE(capped.stats.warnings[0].find("1 shutter segments still hide a surface"), std::string::npos);
 }
 
 // The probe's counts are integers summed in row order, so the split and the image do not depend on the
@@ -159,8 +159,11 @@ TEST(HiddenProbe, SameSplitForOneAndTwoThreads) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         results.push_back(renderFrame(job, 0));
     }
-    for (const char* count : {"segments", "hidden_probe_samples", "hidden_probe_hits"})
-        EXPECT_EQ(results[0].stats.counts.at(count), results[1].stats.counts.at(count)) << count;
+    const ClippedStats& one = results[0].stats.clipped();
+    const ClippedStats& two = results[1].stats.clipped();
+    EXPECT_EQ(one.segments, two.segments);
+    EXPECT_EQ(one.hidden_probe_samples, two.hidden_probe_samples);
+    EXPECT_EQ(one.hidden_probe_hits, two.hidden_probe_hits);
     for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
         EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
 }

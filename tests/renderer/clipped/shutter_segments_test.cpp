@@ -63,10 +63,10 @@ TEST(ShutterSegments, NeighboursShareTheirEndSet) {
                       TransformKey{0.5, glm::dvec3(0.0), aboutY(20), glm::dvec3(1.0)}};
     job.scene.objects.push_back(quad);
     job.render.segments = 2;  // the second half of the shutter is still
-    EXPECT_EQ(renderFrame(job, 0).stats.counts.at("frame_sets"), 2);
+    EXPECT_EQ(renderFrame(job, 0).stats.clipped().frame_sets, 2);
     job.scene.objects[0].transform.push_back(TransformKey{1.0, glm::dvec3(0.0), aboutY(40), glm::dvec3(1.0)});
     job.render.segments = 3;
-    EXPECT_EQ(renderFrame(job, 0).stats.counts.at("frame_sets"), 4);
+    EXPECT_EQ(renderFrame(job, 0).stats.clipped().frame_sets, 4);
 }
 
 // Equal segments meet at one double and share the shutter equally.

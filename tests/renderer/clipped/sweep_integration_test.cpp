@@ -62,7 +62,7 @@ AutoSweep autoSweepAgainstPointSubframes(RenderJob job) {
     job.render.subframes = 0;
     job.render.sweep_spacing = 0.05;
     const RenderResult sweep = renderFrame(job, 0);
-    return {sweep.stats.counts.at("subframes_max_per_tile"), rmsDifference(sweep, point), maxDifference(sweep, point)};
+    return {sweep.stats.clipped().subframes_max_per_tile, rmsDifference(sweep, point), maxDifference(sweep, point)};
 }
 
 // Sweep with `intervals` re-clips and exactly `positions` positions per interval for a quad moving by v.
@@ -108,7 +108,7 @@ void expectOneAutoReclipThenFallingError(const CameraKey& key, double depth, std
     job.render.time_integration = TimeIntegration::Sweep;
     job.render.sweep_spacing = 0.02;
     job.render.subframes = 0;
-    EXPECT_EQ(renderFrame(job, 0).stats.counts.at("subframes_max_per_tile"), 1);
+    EXPECT_EQ(renderFrame(job, 0).stats.clipped().subframes_max_per_tile, 1);
     double previous = 0.0;
     for (const int n : intervals) {
         job.render.subframes = n;
@@ -132,11 +132,11 @@ TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
     const RenderResult point = renderFrame(job, 0);
     for (const auto& [intervals, positions] : {std::pair{1, 12}, {3, 4}, {12, 1}}) {
         const RenderResult sweep = renderFrame(sweepJob(job, v, intervals, positions), 0);
-        EXPECT_EQ(sweep.stats.counts.at("subframes_max_per_tile"), intervals);
+        EXPECT_EQ(sweep.stats.clipped().subframes_max_per_tile, intervals);
         EXPECT_LT(maxDifference(sweep, point), kFloatTolerance) << intervals << " x " << positions;
-        EXPECT_EQ(sweep.stats.counts.at("sweep_unswept_fragments"), 0);
+        EXPECT_EQ(sweep.stats.clipped().reclip.sweep_unswept, 0);
         if (positions > 1) {
-            EXPECT_GT(sweep.stats.counts.at("sweep_spilled_pixels"), 0) << "8-pixel tiles";
+            EXPECT_GT(sweep.stats.clipped().sweep_spilled_pixels, 0) << "8-pixel tiles";
         }
     }
 }
@@ -154,12 +154,12 @@ TEST(SweepIntegration, PixelsOfOneSurfaceSweepAsOneRectangle) {
     job.render.method = Method::Clipped;
     job.scene.objects.push_back(movingQuad(3.3, 5.2, 13.7, 28.9, 10.0, v));
     const RenderResult one = renderFrame(sweepJob(job, v, 1, 4), 0);
-    EXPECT_EQ(one.stats.counts.at("sweep_positions"), 4 * 264);
-    EXPECT_GT(one.stats.counts.at("reclip_fragments"), 264) << "the diagonal cuts pixels: the test means something";
+    EXPECT_EQ(one.stats.clipped().reclip.sweep_positions, 4 * 264);
+    EXPECT_GT(one.stats.clipped().reclip.fragments, 264) << "the diagonal cuts pixels: the test means something";
 
     job.scene.objects.push_back(movingQuad(16.9, 4.4, 22.3, 20.6, 8.0, glm::dvec2(0.0, 3.2)));
     const RenderResult two = renderFrame(sweepJob(job, v, 1, 4), 0);
-    EXPECT_GE(two.stats.counts.at("sweep_positions"), 4 * (264 + 119));
+    EXPECT_GE(two.stats.clipped().reclip.sweep_positions, 4 * (264 + 119));
 }
 
 // A striped quad receding from depth 5 to 6 shrinks toward the image centre by 5/6. A sweep follows each
@@ -186,7 +186,7 @@ TEST(SweepIntegration, DollyMatchesPointSubframes) {
         job.render.subframes = intervals;
         const RenderResult sweep = renderFrame(job, 0);
         EXPECT_LT(maxDifference(sweep, point), 3.5e-4) << intervals;
-        EXPECT_EQ(sweep.stats.counts.at("sweep_unswept_fragments"), 0);
+        EXPECT_EQ(sweep.stats.clipped().reclip.sweep_unswept, 0);
     }
 }
 
@@ -209,7 +209,7 @@ TEST(SweepIntegration, AutoReclipsFollowRollButNotStretch) {
     quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
     quad.transform.push_back(TransformKey{1.0, glm::dvec3(0, 0, 5), {1, 0, 0, 0}, glm::dvec3(1.0)});
     dolly.scene.objects.push_back(quad);
-    EXPECT_EQ(renderFrame(dolly, 0).stats.counts.at("subframes_max_per_tile"), 1);
+    EXPECT_EQ(renderFrame(dolly, 0).stats.clipped().subframes_max_per_tile, 1);
 
     RenderJob roll = squareFilmJob();
     roll.render.method = Method::Clipped;
@@ -219,8 +219,8 @@ TEST(SweepIntegration, AutoReclipsFollowRollButNotStretch) {
     roll.scene.camera.keys.push_back(
         CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(std::sin(1.0), std::cos(1.0), 0)});
     const RenderResult rolled = renderFrame(roll, 0);
-    EXPECT_EQ(rolled.stats.counts.at("segments"), 1);
-    EXPECT_EQ(rolled.stats.counts.at("subframes_max_per_tile"), 4);
+    EXPECT_EQ(rolled.stats.clipped().segments, 1);
+    EXPECT_EQ(rolled.stats.clipped().subframes_max_per_tile, 4);
 }
 
 // A roll of 0.25 rad (within one auto segment) under a 0.8 px striped quad: auto asks for one re-clip, a
@@ -287,8 +287,8 @@ TEST(SweepIntegration, AutoReclipsOnceForATilt) {
         CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, std::sin(0.05), std::cos(0.05)), glm::dvec3(0, 1, 0)});
     job.render.time_integration = TimeIntegration::Sweep;
     const RenderResult tilted = renderFrame(job, 0);
-    EXPECT_EQ(tilted.stats.counts.at("segments"), 1);
-    EXPECT_EQ(tilted.stats.counts.at("subframes_max_per_tile"), 1);
+    EXPECT_EQ(tilted.stats.clipped().segments, 1);
+    EXPECT_EQ(tilted.stats.clipped().subframes_max_per_tile, 1);
 }
 
 // Where one moving surface slides over another, what is hidden changes within an interval and a sweep
@@ -302,7 +302,7 @@ TEST(SweepIntegration, OcclusionErrorFallsWithReclips) {
     std::vector<double> errors;
     for (int intervals : {1, 4, 16}) {
         const RenderResult sweep = renderFrame(sweepJob(job, v, intervals, 48 / intervals), 0);
-        EXPECT_EQ(sweep.stats.counts.at("sweep_backdrop_tiles"), 0);
+        EXPECT_EQ(sweep.stats.clipped().sweep_backdrop_tiles, 0);
         errors.push_back(maxDifference(sweep, reference));
     }
     EXPECT_GT(errors[0], 0.1) << "one re-clip for 16 px of relative motion must show it";
@@ -312,7 +312,7 @@ TEST(SweepIntegration, OcclusionErrorFallsWithReclips) {
     job.render.time_integration = TimeIntegration::Sweep;
     const RenderResult automatic = renderFrame(job, 0);
     // Relative motion |v - w| = 15.6 px: auto re-clips at least every pixel of it.
-    EXPECT_GE(automatic.stats.counts.at("subframes_max_per_tile"), 16);
+    EXPECT_GE(automatic.stats.clipped().subframes_max_per_tile, 16);
 }
 
 // Two quads that pass each other in mid-shutter, apart at both ends: what one hides of the other changes
@@ -331,7 +331,7 @@ TEST(SweepIntegration, ObjectsPassingInMidShutterReclipForTheirRelativeMotion) {
     job.render.time_integration = TimeIntegration::Sweep;
     job.render.sweep_spacing = 0.05;
     const RenderResult automatic = renderFrame(job, 0);
-    const int count = static_cast<int>(automatic.stats.counts.at("subframes_max_per_tile"));
+    const int count = static_cast<int>(automatic.stats.clipped().subframes_max_per_tile);
     EXPECT_GE(count, 44);
     job.render.time_integration = TimeIntegration::Subframes;
     job.render.subframes = count;
@@ -384,11 +384,11 @@ TEST(SweepIntegration, StillBackdropNeedsNoReclips) {
     job.render.subframes = 48;
     const RenderResult reference = renderFrame(job, 0);
     const RenderResult sweep = renderFrame(sweepJob(job, v, 1, 48), 0);
-    EXPECT_GT(sweep.stats.counts.at("sweep_backdrop_tiles"), 0);
+    EXPECT_GT(sweep.stats.clipped().sweep_backdrop_tiles, 0);
     EXPECT_LT(maxDifference(sweep, reference), kFloatTolerance);
     job.render.subframes = 0;
     job.render.time_integration = TimeIntegration::Sweep;
-    EXPECT_EQ(renderFrame(job, 0).stats.counts.at("subframes_max_per_tile"), 1);
+    EXPECT_EQ(renderFrame(job, 0).stats.clipped().subframes_max_per_tile, 1);
 
     RenderJob behind = squareFilmJob();
     behind.render.method = Method::Clipped;
@@ -396,8 +396,8 @@ TEST(SweepIntegration, StillBackdropNeedsNoReclips) {
     behind.scene.objects.push_back(rasterQuad(1.0, 1.0, 12.0, 31.0, 6.0));
     behind.scene.objects.push_back(movingQuad(4.3, 6.2, 14.7, 19.9, 10.0, v));
     const RenderResult hidden = renderFrame(behind, 0);
-    EXPECT_EQ(hidden.stats.counts.at("sweep_backdrop_tiles"), 0);
-    EXPECT_GE(hidden.stats.counts.at("subframes_max_per_tile"), 12);
+    EXPECT_EQ(hidden.stats.clipped().sweep_backdrop_tiles, 0);
+    EXPECT_GE(hidden.stats.clipped().subframes_max_per_tile, 12);
 }
 
 // A bar turning half a turn about the view axis in one segment lies on the same pixels at both ends, so
@@ -433,8 +433,8 @@ TEST(SweepIntegration, BackdropHasWhatBothFramesHide) {
         job.render.segments = 1;
         job.render.time_integration = TimeIntegration::Sweep;
         const RenderResult sweep = renderFrame(job, 0);
-        EXPECT_GT(sweep.stats.counts.at("sweep_backdrop_tiles"), 0);
-        EXPECT_EQ(sweep.stats.counts.at("sweep_backdrop_behind_everything"), behind_everything);
+        EXPECT_GT(sweep.stats.clipped().sweep_backdrop_tiles, 0);
+        EXPECT_EQ(sweep.stats.clipped().backdrop_behind_everything, behind_everything);
         EXPECT_LT(rmsDifference(sweep, reference), 0.01) << wall_depth;
         EXPECT_LT(maxDifference(sweep, reference), 0.1) << wall_depth;
 
@@ -499,7 +499,7 @@ TEST(SweepIntegration, BitIdenticalForOneAndTwoThreads) {
     }
     for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
         EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
-    EXPECT_GT(results[0].stats.counts.at("sweep_spilled_pixels"), 0);
+    EXPECT_GT(results[0].stats.clipped().sweep_spilled_pixels, 0);
 }
 
 }  // namespace clipblur

@@ -10,7 +10,7 @@ namespace clipblur {
 
 namespace {
 
-FragmentTile resolved(const std::vector<ScreenTriangle>& tris, const TileRect& rect) {
+FragmentTile resolved(const std::vector<ScreenTriangle>& tris, const PixelBounds& rect) {
     TileScratch scratch;
     FragmentTile tile;
     resolveTile(tris, rect, {}, scratch, tile);
@@ -47,7 +47,7 @@ std::vector<ScreenTriangle> randomScene(std::uint64_t seed, int count) {
 TEST(FragmentAudit, AcceptsResolvedRandomTiles) {
     for (std::uint64_t seed = 1; seed <= 20; ++seed) {
         const auto tris = randomScene(seed, 12);
-        const FragmentTile tile = resolved(tris, {0, 0, 8, 8});
+        const FragmentTile tile = resolved(tris, PixelBounds::sized(0, 0, 8, 8));
         AuditStats stats;
         auditTile(tris, tile, stats);
         EXPECT_EQ(stats.violations, 0) << "seed " << seed << ": " << stats.first_violation;
@@ -65,7 +65,7 @@ TEST(FragmentAudit, UnionCoverageMatchesAnalyticArea) {
     auto tris = testing::makeQuad(3.1, 2.2, 3.6, 2.9, near, 0);
     for (const auto& t : testing::makeQuad(3.4, 2.5, 4.5, 3.5, far, 2)) tris.push_back(t);
     // Union inside the pixel: 0.5*0.7 + 0.6*0.5 - 0.2*0.4 = 0.57.
-    FragmentTile tile = resolved(tris, {3, 2, 1, 1});
+    FragmentTile tile = resolved(tris, PixelBounds::sized(3, 2, 1, 1));
     AuditStats stats;
     auditTile(tris, tile, stats);
     EXPECT_EQ(stats.violations, 0) << stats.first_violation;
@@ -87,7 +87,7 @@ TEST(FragmentAudit, CatchesOverlapOutsideAndWrongVisibility) {
     const testing::Plane near{0, 0, 1.0}, far{0, 0, 0.5};
     auto tris = testing::makeQuad(0.0, 0.0, 1.0, 1.0, far, 0);
     for (const auto& t : testing::makeQuad(0.25, 0.25, 0.75, 0.75, near, 2)) tris.push_back(t);
-    const FragmentTile good = resolved(tris, {0, 0, 1, 1});
+    const FragmentTile good = resolved(tris, PixelBounds::sized(0, 0, 1, 1));
     AuditStats ok;
     auditTile(tris, good, ok);
     ASSERT_EQ(ok.violations, 0) << ok.first_violation;
@@ -134,7 +134,7 @@ ScreenTriangle tri(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, std::array<double, 
 void expectCleanPixel(const std::vector<ScreenTriangle>& tris, int x, int y) {
     TileScratch scratch;
     FragmentTile tile;
-    resolveTile(tris, {x, y, 1, 1}, {}, scratch, tile);
+    resolveTile(tris, PixelBounds::sized(x, y, 1, 1), {}, scratch, tile);
     AuditStats stats;
     auditTile(tris, tile, stats);
     EXPECT_EQ(stats.violations, 0) << stats.first_violation;

@@ -44,7 +44,7 @@ TEST(FragmentTile, WatertightMeshCoversEveryPixelOnceAndHidesTheMeshBehind) {
     auto back = jitteredMesh(rng, {0.0, 0.0, 0.25}, 1000);
     std::vector<ScreenTriangle> tris = back;
     tris.insert(tris.end(), front.begin(), front.end());
-    const TileRect rect{1, 1, 6, 6};
+    const PixelBounds rect = PixelBounds::sized(1, 1, 6, 6);
     TileScratch scratch;
     FragmentTile tile;
     resolveTile(tris, rect, {}, scratch, tile);
@@ -80,7 +80,7 @@ TEST(FragmentTile, TriangleAreaIsConservedAcrossTilePixels) {
     const auto t = testing::makeTriangle({2.3, 1.7}, {9.6, 4.1}, {4.4, 8.9}, {0, 0, 1}, 0);
     TileScratch scratch;
     FragmentTile tile;
-    resolveTile(std::span(&t, 1), {0, 0, 12, 12}, {}, scratch, tile);
+    resolveTile(std::span(&t, 1), PixelBounds::sized(0, 0, 12, 12), {}, scratch, tile);
     double sum = 0.0;
     for (const Fragment& f : tile.fragments) sum += f.area;
     const double exact = 0.5 * std::abs((9.6 - 2.3) * (8.9 - 1.7) - (4.1 - 1.7) * (4.4 - 2.3));
@@ -93,7 +93,7 @@ TEST(FragmentTile, CountsInvalidTrianglesOnce) {
     tris[1].raster[1].x = NAN;
     TileScratch scratch;
     FragmentTile tile;
-    resolveTile(tris, {0, 0, 4, 4}, {}, scratch, tile);
+    resolveTile(tris, PixelBounds::sized(0, 0, 4, 4), {}, scratch, tile);
     EXPECT_EQ(tile.rejected_triangles, 1);
     for (const Fragment& f : tile.fragments) EXPECT_EQ(f.sources[0].source, 0u);
 }

@@ -191,7 +191,7 @@ TEST(SweepPath, BoundsHoldEveryPositionAndAreTight) {
             return path.pivot + offsetAt(path, s) + stretchAt(path, s) * (p - path.pivot);
         };
         for (int m : {1, 2, 5, 17}) {
-            const Bounds2 b = sweptBounds(q, path, m);
+            const RasterBounds b = sweptBounds(q, path, m);
             for (int k = 0; k < m; ++k)
                 for (int i = 0; i < q.n; ++i) {
                     const glm::dvec2 p = moved((k + 0.5) / m - 0.5, q.v[i]);
@@ -202,7 +202,7 @@ TEST(SweepPath, BoundsHoldEveryPositionAndAreTight) {
                 }
             const double first = 0.5 / m - 0.5;
             glm::dvec2 lo(1e300), hi(-1e300);
-            const Bounds2 box = q.bounds();
+            const RasterBounds box = q.bounds();
             for (int i = 0; i <= 20000; ++i) {
                 const double s = m == 1 ? 0.0 : first + (-2.0 * first) * i / 20000.0;
                 for (const glm::dvec2& corner : {box.lo, box.hi}) {
@@ -261,7 +261,7 @@ TEST(SweepPath, TurnsFollowATurningMovingCameraExactly) {
         path.turns = turns;
         path.setStretch(glm::dvec2(1.0 + 0.1 * u(rng), 1.0 + 0.1 * u(rng)), glm::dvec2(1.0 + 0.1 * u(rng), 1.0 + 0.1 * u(rng)));
         ConvexPolygon q = randomFragment(rng, glm::floor(path.pivot));
-        const Bounds2 b = sweptBounds(q, path, m);
+        const RasterBounds b = sweptBounds(q, path, m);
         for (int k = 0; k < m; ++k) {
             glm::dvec2 offset, stretch;
             path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);

@@ -15,7 +15,7 @@ Projection projectionOf(const Scene& scene) {
     return Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
 }
 
-const RasterBox kWholeFilm{{0, 0}, {640, 360}};
+const RasterBounds kWholeFilm{{0, 0}, {640, 360}};
 
 // A triangle at depth `depth` whose points all move `pixels` raster pixels along x over [0, 1].
 Object slidingTriangle(const Projection& proj, double depth, double pixels) {
@@ -79,14 +79,14 @@ TEST(Subframes, CurvedPathGetsMoreSubframesThanItsChord) {
     EXPECT_EQ(chord_count, 142);
     EXPECT_GT(plan.count, chord_count);
     // The swept box holds the whole arc, which bulges beyond the end points' box.
-    RasterBox ends;
+    RasterBounds ends;
     ends.expand(a);
     ends.expand(b);
     int outside_ends = 0;
     for (int i = 0; i <= 1000; ++i) {
         const glm::dvec2 p = project(MotionSnapshot(scene, proj, i / 1000.0), scene, corner).raster;
-        EXPECT_TRUE(fm.swept.overlaps(RasterBox{p, p})) << i;
-        if (!ends.overlaps(RasterBox{p, p})) ++outside_ends;
+        EXPECT_TRUE(fm.swept.overlaps(RasterBounds{p, p})) << i;
+        if (!ends.overlaps(RasterBounds{p, p})) ++outside_ends;
     }
     EXPECT_GT(outside_ends, 100);
 }
@@ -304,7 +304,7 @@ TEST(Subframes, PlannedCountKeepsRandomMotionWithinAPixelPerStep) {
                 verts.push_back({obj, obj, b / (b.x + b.y + b.z)});
             }
             const FragmentMotion fm = sampler.measure(verts);
-            const SubframePlan plan = planSubframes(std::span(&fm, 1), RasterBox::everything(), 1 << 20);
+            const SubframePlan plan = planSubframes(std::span(&fm, 1), RasterBounds::everything(), 1 << 20);
             ASSERT_FALSE(plan.capped);
             EXPECT_GT(plan.count, 1);
             EXPECT_LE(maxSubframeStep(scene, proj, verts, 0.0, 1.0, plan.count), 1.02) << "seed " << seed;
@@ -397,7 +397,7 @@ TEST(Subframes, SweptBoxHoldsDenselySampledPaths) {
             for (const MotionSnapshot& s : dense) {
                 for (const MeshPoint& v : verts) {
                     const glm::dvec2 p = project(s, scene, v).raster;
-                    ASSERT_TRUE(fm.swept.overlaps(RasterBox{p, p})) << "seed " << seed << " t " << s.time;
+                    ASSERT_TRUE(fm.swept.overlaps(RasterBounds{p, p})) << "seed " << seed << " t " << s.time;
                 }
             }
         }
@@ -411,11 +411,11 @@ TEST(Subframes, TilesIgnoreFragmentsThatNeverReachThem) {
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
     const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
     const FragmentMotion fm = sampler.measure(verts);
-    const RasterBox far_tile{{0, 0}, {32, 32}};
+    const RasterBounds far_tile{{0, 0}, {32, 32}};
     const SubframePlan far_plan = planSubframes(std::span(&fm, 1), far_tile, 256);
     EXPECT_EQ(far_plan.fragments, 0);
     EXPECT_EQ(far_plan.count, 1);
-    const RasterBox centre_tile{{320, 160}, {352, 192}};
+    const RasterBounds centre_tile{{320, 160}, {352, 192}};
     EXPECT_EQ(planSubframes(std::span(&fm, 1), centre_tile, 256).count, 40);
 }
 
@@ -430,8 +430,8 @@ TEST(Subframes, CrossingTheCameraPlaneIsFlagged) {
     const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
     const FragmentMotion fm = sampler.measure(verts);
     EXPECT_TRUE(fm.crosses_near);
-    EXPECT_TRUE(fm.swept.overlaps(RasterBox{{1e9, 1e9}, {1e9, 1e9}}));
-    const SubframePlan plan = planSubframes(std::span(&fm, 1), RasterBox{{0, 0}, {32, 32}}, 256);
+    EXPECT_TRUE(fm.swept.overlaps(RasterBounds{{1e9, 1e9}, {1e9, 1e9}}));
+    const SubframePlan plan = planSubframes(std::span(&fm, 1), RasterBounds{{0, 0}, {32, 32}}, 256);
     EXPECT_EQ(plan.near_crossings, 1);
 }
 

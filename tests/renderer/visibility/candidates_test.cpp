@@ -109,9 +109,9 @@ TEST(Candidates, SkippingRaysWhereTheyDoNotPayChangesNoPixel) {
     const RenderResult mixed = renderFrame(job, 0);
     job.render.visibility_rays = 0;
     const RenderResult exhaustive = renderFrame(job, 0);
-    EXPECT_GT(mixed.stats.counts.at("open_exhaustive_tiles"), 0);
-    EXPECT_GT(mixed.stats.counts.at("open_rays"), 0);
-    EXPECT_LT(mixed.stats.counts.at("open_candidates"), exhaustive.stats.counts.at("open_candidates"));
+    EXPECT_GT(mixed.stats.clipped().open.candidates.exhaustive_tiles, 0);
+    EXPECT_GT(mixed.stats.clipped().open.candidates.rays, 0);
+    EXPECT_LT(mixed.stats.clipped().open.candidates.candidates, exhaustive.stats.clipped().open.candidates.candidates);
     for (std::size_t c = 0; c < mixed.image.channels.size(); ++c)
         EXPECT_EQ(mixed.image.channels[c].values, exhaustive.image.channels[c].values) << c;
 }
@@ -171,7 +171,7 @@ TEST(Candidates, DiagonalSliverBetweenRaysIsKept) {
     const RenderResult rays = renderFrame(job, 0);
     job.render.visibility_rays = 0;
     const RenderResult exhaustive = renderFrame(job, 0);
-    ASSERT_GT(rays.stats.counts.at("open_rays"), 0);  // the stack makes tile 0 trace rays
+    ASSERT_GT(rays.stats.clipped().open.candidates.rays, 0);  // the stack makes tile 0 trace rays
     EXPECT_NE(without.image.channels[0].values, exhaustive.image.channels[0].values);  // the strip shows
     for (std::size_t c = 0; c < rays.image.channels.size(); ++c)
         EXPECT_EQ(rays.image.channels[c].values, exhaustive.image.channels[c].values) << c;

@@ -1,17 +1,17 @@
-#include "scene/data_window.h"
+#include "scene/pixel_bounds.h"
 
 namespace clipblur {
 
-std::string toString(const DataWindow& w) {
+std::string toString(const PixelBounds& b) {
     // Appending, not "[" + to_string(...): GCC 12 warns falsely (-Wrestrict, bug 105651) on the latter.
     std::string s = "[";
-    s += std::to_string(w.x0);
+    s += std::to_string(b.x0);
     s += ",";
-    s += std::to_string(w.x1());
+    s += std::to_string(b.x1);
     s += ")x[";
-    s += std::to_string(w.y0);
+    s += std::to_string(b.y0);
     s += ",";
-    s += std::to_string(w.y1());
+    s += std::to_string(b.y1);
     s += ")";
     return s;
 }

@@ -1,0 +1,90 @@
+#pragma once
+
+#include <optional>
+
+#include "renderer/clipped/frame_fragments.h"
+#include "renderer/clipped/subframe_reclip.h"
+
+namespace clipblur {
+
+// What the paper's method (and its frame-0-only ablation) did for one frame.
+struct ClippedStats {
+    struct Seconds {
+        double scene_build = 0.0, hidden_probe = 0.0, segments = 0.0;
+        double frame_fragments = 0.0, motion_plan = 0.0, tiles = 0.0;  // the parts of `segments`
+    } seconds;
+    bool both_frames = true;  // false: render.method frame0_only
+    bool sweep = false;       // render.time_integration sweep
+    bool ode = false;         // render.path_method euler or rk4
+    long long tiles = 0, triangles = 0, segments = 0, frame_sets = 0, guard_band_pixels = 0;
+    long long hidden_probe_samples = 0, hidden_probe_hits = 0;
+    long long still_tiles = 0, subframes_total = 0, subframes_max_per_tile = 0, capped_tiles = 0;
+    long long measured_fragment_paths = 0, near_crossing_fragments = 0;
+    long long sweep_spilled_pixels = 0, sweep_backdrop_tiles = 0;  // sweep: see SegmentTotals, MotionPlan
+    bool backdrop_behind_everything = false;
+    ReclipStats reclip;
+    FrameFragmentStats open, close;
+    std::optional<FrameFragmentStats> mid, backdrop;  // the mid-shutter depth set, the still backdrop
+    std::optional<AuditStats> audit;                  // render.audit: every set and re-clip merged
+
+    template <class Fields>
+    void fields(Fields& f) const {
+        f.info("method", both_frames ? "clipped" : "frame0_only");
+        f.seconds("scene_build", seconds.scene_build);
+        f.seconds("hidden_probe", seconds.hidden_probe);
+        f.seconds("segments", seconds.segments);
+        f.seconds("frame_fragments", seconds.frame_fragments);
+        f.seconds("motion_plan", seconds.motion_plan);
+        f.seconds("tiles", seconds.tiles);
+        f.count("tiles", tiles);
+        f.count("triangles", triangles);
+        f.count("segments", segments);
+        f.count("hidden_probe_samples", hidden_probe_samples);
+        f.count("hidden_probe_hits", hidden_probe_hits);
+        f.count("frame_sets", frame_sets);
+        f.count("guard_band_pixels", guard_band_pixels);
+        f.count("still_tiles", still_tiles);
+        f.count("subframes_total", subframes_total);
+        f.count("subframes_max_per_tile", subframes_max_per_tile);
+        f.count("capped_tiles", capped_tiles);
+        f.count("measured_fragment_paths", measured_fragment_paths);
+        f.count("near_crossing_fragments", near_crossing_fragments);
+        f.count("propagated_triangles", reclip.propagated);
+        f.count("reclip_near_clipped", reclip.near_clipped);
+        f.count("reclip_fragments", reclip.fragments);
+        f.count("reclip_mixed_fragments", reclip.mixed);
+        f.count("reclip_shaded_pieces", reclip.shaded_pieces);
+        if (sweep) {
+            f.count("sweep_positions", reclip.sweep_positions);
+            f.count("sweep_unswept_fragments", reclip.sweep_unswept);
+            f.count("sweep_spilled_pixels", sweep_spilled_pixels);
+            f.count("sweep_backdrop_tiles", sweep_backdrop_tiles);
+            f.count("sweep_backdrop_behind_everything", backdrop_behind_everything ? 1 : 0);
+        }
+        if (ode) f.count("ode_fallbacks", reclip.ode_fallbacks);
+        f.nest("open_", open);
+        if (both_frames) f.nest("close_", close);
+        if (mid) f.nest("mid_", *mid);
+        if (backdrop) f.nest("backdrop_", *backdrop);
+        if (audit) f.nest("audit_", *audit);
+    }
+};
+
+// What the accumulation buffer did for one frame.
+struct AccumulationStats {
+    long long renders = 0;
+    FrameFragmentStats all;  // every still render's fragment set
+    std::optional<FrameFragmentStats> mid;
+    std::optional<AuditStats> audit;
+
+    template <class Fields>
+    void fields(Fields& f) const {
+        f.info("method", "accumulation");
+        f.count("renders", renders);
+        f.nest("all_", all);
+        if (mid) f.nest("mid_", *mid);
+        if (audit) f.nest("audit_", *audit);
+    }
+};
+
+}  // namespace clipblur
