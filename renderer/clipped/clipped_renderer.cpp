@@ -362,6 +362,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
         std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
         const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
         const double half = 0.5 * (te - ts) / std::max(n, 1);
+        const TileReclip reclip{scene, ctx.shader, layers, refs, tile, settings.audit};
         tbb::parallel_for(0, n, [&](int k) {
             const double t = times[static_cast<std::size_t>(k)];
             const MotionSnapshot snapshot(scene, ctx.projection, t);
@@ -376,8 +377,7 @@ void renderSegment(const ClippedContext& ctx, double ts, double te, int subframe
                 const IntervalTurns& turn = turns[static_cast<std::size_t>(k)];
                 if (n == intervals && !turn.at_positions.empty()) interval.turns = &turn;
             }
-            reclipSubframe(scene, ctx.shader, snapshot, (t - ts) / (te - ts), layers, refs, tile,
-                           sweeping ? &interval : nullptr, settings.audit, scratches.local(),
+            reclipSubframe(reclip, {snapshot, (t - ts) / (te - ts), sweeping ? &interval : nullptr}, scratches.local(),
                            tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
         });
         const double w = weight / std::max(n, 1);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "renderer/check.h"
 #include "renderer/visibility/frame_geometry.h"
 
 namespace clipblur {
@@ -76,6 +77,9 @@ void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdeProp
             behind = behind || p.behind || p.depth < kNearDepth;
         }
     }
+    // Scene validation keeps every key finite, so the exact paths are; the ODE falls back before it diverges.
+    CLIPBLUR_DCHECK(std::isfinite(world[0].x + world[0].y + world[0].z + world[1].x + world[1].y + world[1].z +
+                                  world[2].x + world[2].y + world[2].z));
     ++stats.propagated;
     if (!behind) {
         addScreenTriangle(snapshot, world, {t.object, t.triangle, t.bary}, ref, weight, scratch);
@@ -272,135 +276,199 @@ IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, do
     return out;
 }
 
-void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
-                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const PixelBounds& tile,
-                    const SweepInterval* sweep, bool audit, ReclipScratch& scratch, TileSums& out,
+namespace {
+
+// One re-clip's state across the pixels of its region.
+struct ReclipPass {
+    const TileReclip& tile;
+    const ReclipTime& at;
+    ReclipScratch& scratch;
+    TileSums& out;
+    ReclipStats& stats;
+};
+
+// A resolved fragment, shaded: its polygon, its colour and motion per px^2 (its sources mixed), its
+// objects' shares, and its first source's surface sampled at its centroid. With a sweep, a textured
+// fragment's pieces other than the largest go to scratch.textured as colour differences.
+struct ShadedFragment {
+    ConvexPolygon polygon;
+    glm::dvec3 colour{0.0};
+    glm::dvec2 motion{0.0};
+    PolygonObjects objects;
+    glm::dvec2 centroid{0.0};
+    std::uint32_t first = 0;  // the first source's screen triangle
+    SourceSample sample;
+    bool sampled = false;      // the centroid lies on the first source, in front of the camera
+    double inv_depth = 0.0;    // 0 when not sampled
+};
+
+ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
+    const FragmentLayers& layers = pass.tile.layers;
+    ReclipScratch& scratch = pass.scratch;
+    ShadedFragment shaded;
+    ConvexPolygon& polygon = shaded.polygon;
+    for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
+    polygon.close();
+    scratch.textured.clear();
+    // Both frames' copies of one triangle of a still object shade alike (Shader::sameFromBoth): one
+    // shading serves the pair, the mix weights summing to 1.
+    const auto shadeOnce = [&] {
+        const SourceTriangle& a = scratch.sources[fragment.sources[0].source];
+        const SourceTriangle& b = scratch.sources[fragment.sources[1].source];
+        return a.object == b.object && a.triangle == b.triangle &&
+               pass.tile.shader.sameFromBoth(a.object, a.triangle, layers.eye[0], layers.eye[1]);
+    };
+    const bool shade_once = fragment.source_count == 2 && shadeOnce();
+    for (int k = 0; pass.out.track_objects && k < fragment.source_count; ++k)
+        shaded.objects.add(static_cast<int>(scratch.sources[fragment.sources[k].source].object), fragment.mix(k));
+    for (int k = 0; k < fragment.source_count; ++k) {
+        const std::uint32_t s = fragment.sources[k].source;
+        const FragmentRef ref = scratch.origin[s];
+        if (!layers.motion[ref.layer].empty())
+            shaded.motion += fragment.mix(k) * glm::dvec2(layers.motion[ref.layer][ref.index]);
+        if (shade_once && k == 1) continue;
+        const double m = shade_once ? 1.0 : fragment.mix(k);
+        // The piece is where this source's surface is now; it is shaded as its frame saw it.
+        scratch.pieces.clear();
+        shadeFragment(polygon, scratch.screen[s], scratch.sources[s], pass.tile.shader, layers.time[ref.layer],
+                      layers.eye[ref.layer], scratch.pieces);
+        pass.stats.shaded_pieces += static_cast<long long>(scratch.pieces.size());
+        glm::dvec3 sum(0.0);
+        double area = 0.0;
+        for (const ShadedPiece& piece : scratch.pieces) {
+            sum += piece.area * piece.colour;
+            area += piece.area;
+        }
+        if (pass.at.sweep && scratch.pieces.size() > 1 && area > 0.0) {
+            // Swept pieces keep their own colours: the fragment's mean colour smeared over pixels would
+            // move a texture edge inside it to the fragment's centre. Footprints add up over pieces, so
+            // the whole fragment carries the largest piece's colour and the other pieces only their
+            // difference to it.
+            const double scale = m * fragment.area / area;
+            const auto base = std::max_element(scratch.pieces.begin(), scratch.pieces.end(),
+                                               [](const auto& a, const auto& b) { return a.area < b.area; });
+            shaded.colour += scale * base->colour;
+            for (auto piece = scratch.pieces.begin(); piece != scratch.pieces.end(); ++piece)
+                if (piece != base) addTextured(piece->polygon, scale * (piece->colour - base->colour), scratch.textured);
+        } else if (area > 0.0) {
+            shaded.colour += m * sum / area;
+        }
+    }
+    shaded.first = fragment.sources[0].source;
+    shaded.centroid = centroid(polygon);
+    shaded.sampled = evalSource(scratch.screen[shaded.first], shaded.centroid, shaded.sample) && shaded.sample.inv_depth > 0.0;
+    shaded.inv_depth = shaded.sampled ? shaded.sample.inv_depth : 0.0;
+    return shaded;
+}
+
+// A point re-clip: the fragment's area and what it carries go to its own pixel.
+void addPoint(ReclipPass& pass, const ShadedFragment& shaded, std::size_t i, double area) {
+    TileSums& out = pass.out;
+    out.colour[i] += area * shaded.colour;
+    out.covered[i] += area;
+    out.motion[i] += area * shaded.motion;
+    if (shaded.inv_depth > 0.0) out.depth[i] += area / shaded.inv_depth;
+    for (int k = 0; k < shaded.objects.count; ++k)
+        addShare(out.objects[i], shaded.objects.shares[static_cast<std::size_t>(k)].object,
+                 area * shaded.objects.shares[static_cast<std::size_t>(k)].coverage);
+}
+
+// The motion groups of one pixel's swept fragments: whether all are swept and of one group, so that
+// they move alike and can be merged (mergePixel).
+struct PixelSurface {
+    bool one = true;
+    std::uint32_t group = std::numeric_limits<std::uint32_t>::max();
+};
+
+// A sweep re-clip: queues the fragment (and its texture pieces) to be swept along the path of the
+// surface point under its centroid; a path reaching past the interval's reach stays a point sample.
+void queueSwept(ReclipPass& pass, const Fragment& fragment, const ShadedFragment& shaded, PixelSurface& surface) {
+    const SweepInterval& sweep = *pass.at.sweep;
+    ReclipScratch& scratch = pass.scratch;
+    const Scene& scene = pass.tile.scene;
+    std::optional<SweepPath> path = shaded.sampled ? sweepPath(scene, sweep, scratch.sources[shaded.first],
+                                                               shaded.sample, shaded.centroid)
+                                                   : std::nullopt;
+    if (path) {
+        glm::dvec4& stretch = scratch.stretch[shaded.first];
+        if (std::isnan(stretch.x))
+            stretch = surfaceStretch(scene, sweep, scratch.screen[shaded.first], scratch.sources[shaded.first]);
+        path->setStretch(glm::dvec2(stretch.x, stretch.y), glm::dvec2(stretch.z, stretch.w));
+    }
+    int positions = 1;
+    SweepPath shift;
+    if (path && path->reach() <= 0.5 * sweep.reach) {
+        shift = *path;
+        if (shift.moves()) positions = sweep.positions;
+    } else {
+        ++pass.stats.sweep_unswept;
+        surface.one = false;
+    }
+    for (int k = 0; k < fragment.source_count; ++k) {
+        const std::uint32_t group = sweep.groups[scratch.sources[fragment.sources[k].source].object];
+        if (surface.group == std::numeric_limits<std::uint32_t>::max()) surface.group = group;
+        surface.one = surface.one && group == surface.group;
+    }
+    SweptPolygon swept;
+    swept.polygon = shaded.polygon;
+    swept.path = shift;
+    swept.positions = positions;
+    swept.colour = shaded.colour;
+    swept.motion = shaded.motion;
+    swept.depth = shaded.sampled ? 1.0 / shaded.inv_depth : 0.0;
+    swept.objects = shaded.objects;
+    scratch.swept.push_back(swept);  // swept after the tile's last fragment: only then is the box known
+    for (const auto& [piece, piece_colour] : scratch.textured) {
+        SweptPolygon difference;
+        difference.polygon = piece;
+        difference.path = shift;
+        difference.positions = positions;
+        difference.colour = piece_colour;
+        difference.coverage = false;
+        scratch.swept.push_back(difference);
+    }
+}
+
+}  // namespace
+
+void reclipSubframe(const TileReclip& tile, const ReclipTime& at, ReclipScratch& scratch, TileSums& out,
                     ReclipStats& stats) {
     scratch.screen.clear();
     scratch.origin.clear();
     scratch.sources.clear();
-    const std::array<float, 2> weights{static_cast<float>(1.0 - f), static_cast<float>(f)};
-    for (const FragmentRef ref : refs)
-        propagate(scene, snapshot, layers.ode, (*layers.triangles[ref.layer])[ref.index], ref, weights[ref.layer],
-                  scratch, stats);
+    const std::array<float, 2> weights{static_cast<float>(1.0 - at.fraction), static_cast<float>(at.fraction)};
+    for (const FragmentRef ref : tile.refs)
+        propagate(tile.scene, at.snapshot, tile.layers.ode, (*tile.layers.triangles[ref.layer])[ref.index], ref,
+                  weights[ref.layer], scratch, stats);
 
     // Sweep: each screen triangle's stretch, computed when a fragment first needs it (NaN: not yet).
-    if (sweep) scratch.stretch.assign(scratch.screen.size(), glm::dvec4(std::numeric_limits<double>::quiet_NaN()));
-    const PixelBounds region = sweep ? sweep->resolve : tile;
+    if (at.sweep) scratch.stretch.assign(scratch.screen.size(), glm::dvec4(std::numeric_limits<double>::quiet_NaN()));
+    const PixelBounds region = at.sweep ? at.sweep->resolve : tile.tile;
     resolveTile(scratch.screen, region, {}, scratch.tile, scratch.fragments);
-    if (audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
-    if (!sweep) out.reset(tile);
+    if (tile.audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
+    if (!at.sweep) out.reset(tile.tile);
     scratch.swept.clear();
+    ReclipPass pass{tile, at, scratch, out, stats};
     for (int y = region.y0; y < region.y1; ++y) {
         for (int x = region.x0; x < region.x1; ++x) {
             const std::size_t pixel_begin = scratch.swept.size();
-            bool one_surface = sweep != nullptr;  // every fragment swept, all of one motion group
-            std::uint32_t pixel_group = std::numeric_limits<std::uint32_t>::max();
+            PixelSurface surface;
             for (const Fragment& fragment : scratch.fragments.pixel(x, y)) {
                 ++stats.fragments;
                 if (fragment.source_count > 1) ++stats.mixed;
-                ConvexPolygon polygon;
-                for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
-                polygon.close();
-                glm::dvec3 colour(0.0);
-                glm::dvec2 motion(0.0);
-                scratch.textured.clear();
-                // Both frames' copies of one triangle of a still object shade alike (Shader::sameFromBoth):
-                // one shading serves the pair, the mix weights summing to 1.
-                const auto shadeOnce = [&] {
-                    const SourceTriangle& a = scratch.sources[fragment.sources[0].source];
-                    const SourceTriangle& b = scratch.sources[fragment.sources[1].source];
-                    return a.object == b.object && a.triangle == b.triangle &&
-                           shader.sameFromBoth(a.object, a.triangle, layers.eye[0], layers.eye[1]);
-                };
-                const bool shade_once = fragment.source_count == 2 && shadeOnce();
-                PolygonObjects objects;  // ID mattes: each source's object with its mix factor
-                for (int k = 0; out.track_objects && k < fragment.source_count; ++k)
-                    objects.add(static_cast<int>(scratch.sources[fragment.sources[k].source].object), fragment.mix(k));
-                for (int k = 0; k < fragment.source_count; ++k) {
-                    const std::uint32_t s = fragment.sources[k].source;
-                    const FragmentRef ref = scratch.origin[s];
-                    if (!layers.motion[ref.layer].empty())
-                        motion += fragment.mix(k) * glm::dvec2(layers.motion[ref.layer][ref.index]);
-                    if (shade_once && k == 1) continue;
-                    const double m = shade_once ? 1.0 : fragment.mix(k);
-                    // The piece is where this source's surface is now; it is shaded as its frame saw it.
-                    scratch.pieces.clear();
-                    shadeFragment(polygon, scratch.screen[s], scratch.sources[s], shader, layers.time[ref.layer],
-                                  layers.eye[ref.layer], scratch.pieces);
-                    stats.shaded_pieces += static_cast<long long>(scratch.pieces.size());
-                    glm::dvec3 sum(0.0);
-                    double area = 0.0;
-                    for (const ShadedPiece& piece : scratch.pieces) {
-                        sum += piece.area * piece.colour;
-                        area += piece.area;
-                    }
-                    if (sweep && scratch.pieces.size() > 1 && area > 0.0) {
-                        // Swept pieces keep their own colours: the fragment's mean colour smeared over
-                        // pixels would move a texture edge inside it to the fragment's centre. Footprints
-                        // add up over pieces, so the whole fragment carries the largest piece's colour and
-                        // the other pieces only their difference to it.
-                        const double scale = m * fragment.area / area;
-                        const auto base = std::max_element(scratch.pieces.begin(), scratch.pieces.end(),
-                                                           [](const auto& a, const auto& b) { return a.area < b.area; });
-                        colour += scale * base->colour;
-                        for (auto piece = scratch.pieces.begin(); piece != scratch.pieces.end(); ++piece)
-                            if (piece != base) addTextured(piece->polygon, scale * (piece->colour - base->colour), scratch.textured);
-                    } else if (area > 0.0) {
-                        colour += m * sum / area;
-                    }
-                }
-                const std::uint32_t first = fragment.sources[0].source;
-                const glm::dvec2 c = centroid(polygon);
-                SourceSample sample;
-                const bool sampled = evalSource(scratch.screen[first], c, sample) && sample.inv_depth > 0.0;
-                const double inv_depth = sampled ? sample.inv_depth : 0.0;
-                const auto add = [&](std::size_t i, double area) {
-                    out.colour[i] += area * colour;
-                    out.covered[i] += area;
-                    out.motion[i] += area * motion;
-                    if (inv_depth > 0.0) out.depth[i] += area / inv_depth;
-                    for (int k = 0; k < objects.count; ++k)
-                        addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,
-                                 area * objects.shares[static_cast<std::size_t>(k)].coverage);
-                };
-                if (!sweep) {
-                    add(out.box.index(x, y), fragment.area);
-                    continue;
-                }
-                std::optional<SweepPath> path =
-                    sampled ? sweepPath(scene, *sweep, scratch.sources[first], sample, c) : std::nullopt;
-                if (path) {
-                    glm::dvec4& stretch = scratch.stretch[first];
-                    if (std::isnan(stretch.x)) stretch = surfaceStretch(scene, *sweep, scratch.screen[first], scratch.sources[first]);
-                    path->setStretch(glm::dvec2(stretch.x, stretch.y), glm::dvec2(stretch.z, stretch.w));
-                }
-                int positions = 1;
-                SweepPath shift;
-                if (path && path->reach() <= 0.5 * sweep->reach) {
-                    shift = *path;
-                    if (shift.moves()) positions = sweep->positions;
-                } else {
-                    ++stats.sweep_unswept;
-                    one_surface = false;
-                }
-                for (int k = 0; k < fragment.source_count; ++k) {
-                    const std::uint32_t group = sweep->groups[scratch.sources[fragment.sources[k].source].object];
-                    if (pixel_group == std::numeric_limits<std::uint32_t>::max()) pixel_group = group;
-                    one_surface = one_surface && group == pixel_group;
-                }
-                // Swept after the tile's last fragment: only then is the box they reach known.
-                scratch.swept.push_back(
-                    {polygon, shift, positions, colour, motion, sampled ? 1.0 / inv_depth : 0.0, true, objects});
-                for (const auto& [piece, piece_colour] : scratch.textured)
-                    scratch.swept.push_back({piece, shift, positions, piece_colour, {}, 0.0, false, {}});
+                const ShadedFragment shaded = shadeResolved(pass, fragment);
+                if (at.sweep)
+                    queueSwept(pass, fragment, shaded, surface);
+                else
+                    addPoint(pass, shaded, out.box.index(x, y), fragment.area);
             }
-            if (one_surface) mergePixel(scratch.swept, pixel_begin, scratch.staging);
+            if (!at.sweep) continue;
+            if (surface.one) mergePixel(scratch.swept, pixel_begin, scratch.staging);
             for (std::size_t i = pixel_begin; i < scratch.swept.size(); ++i)
                 if (scratch.swept[i].coverage) stats.sweep_positions += scratch.swept[i].positions;
         }
     }
-    if (sweep) accumulateSwept(*sweep, tile, scratch, out);
+    if (at.sweep) accumulateSwept(*at.sweep, tile.tile, scratch, out);
 }
 
 }  // namespace clipblur

@@ -143,15 +143,31 @@ struct ReclipStats {
     }
 };
 
+// What every re-clip of one tile shares.
+struct TileReclip {
+    const Scene& scene;
+    const Shader& shader;
+    const FragmentLayers& layers;
+    std::span<const FragmentRef> refs;  // the fragment triangles that can reach the tile (MotionPlan)
+    PixelBounds tile;
+    bool audit = false;  // check every resolved pixel (auditTile) into ReclipStats::audit
+};
+
+// When one re-clip happens: the snapshot at its time t, t's fraction f of the segment (frame 0's
+// fragments weigh 1 - f, frame 1's f) and, with sweep integration, the interval around t it stands for.
+struct ReclipTime {
+    const MotionSnapshot& snapshot;
+    double fraction = 0.0;
+    const SweepInterval* sweep = nullptr;
+};
+
 // Sections 3.2-3.4 for one (tile, subframe): moves every referenced fragment triangle to the snapshot's
 // time along its exact path (frame-0 ones forward, frame-1 ones backward: the same function of time),
 // clips pieces crossing the camera plane in 3D, re-clips the union per pixel into non-overlapping
 // fragments (equal range: one kept, colours mixed with weights 1-f and f), shades each piece as its frame
-// saw it, and reduces each pixel. With `sweep` the fragments of sweep->resolve are swept over the
+// saw it, and reduces each pixel. With a sweep the fragments of sweep->resolve are swept over the
 // interval into sweep->box; without, the tile's pixels get the point sample at the snapshot's time.
-void reclipSubframe(const Scene& scene, const Shader& shader, const MotionSnapshot& snapshot, double f,
-                    const FragmentLayers& layers, std::span<const FragmentRef> refs, const PixelBounds& tile,
-                    const SweepInterval* sweep, bool audit, ReclipScratch& scratch, TileSums& out,
+void reclipSubframe(const TileReclip& tile, const ReclipTime& at, ReclipScratch& scratch, TileSums& out,
                     ReclipStats& stats);
 
 }  // namespace clipblur

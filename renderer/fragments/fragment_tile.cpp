@@ -3,7 +3,31 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/check.h"
+#include "renderer/geometry/predicates.h"
+
 namespace clipblur {
+
+namespace {
+
+// What every consumer of a resolved fragment relies on (the sanitizer build checks it; render.audit
+// checks more, against an independent union): finite vertices inside pixel (x, y) up to the audit's
+// 1e-9 px, counter-clockwise turns, a positive finite area, and mix factors summing to 1.
+[[maybe_unused]] bool wellFormed(const Fragment& f, int x, int y) {
+    constexpr double kOutside = 1e-9;  // px, AuditTolerance::outside
+    if (f.vertex_count < 3 || f.source_count < 1 || !(f.area > 0.0) || !std::isfinite(f.area)) return false;
+    for (int k = 0; k < f.vertex_count; ++k) {
+        const glm::dvec2& v = f.vertices[k];
+        if (!(v.x >= x - kOutside && v.x <= x + 1 + kOutside && v.y >= y - kOutside && v.y <= y + 1 + kOutside))
+            return false;  // also NaN
+        // Convex and counter-clockwise: no turn to the right (collinear runs are allowed).
+        if (orient2d(v, f.vertices[(k + 1) % f.vertex_count], f.vertices[(k + 2) % f.vertex_count]) < -1e-10)
+            return false;  // px^2: rounding of clipped vertices, far below any real turn
+    }
+    return std::abs(f.mix(0) + (f.source_count > 1 ? f.mix(1) : 0.0) - 1.0) < 1e-12;
+}
+
+}  // namespace
 
 void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& rect, const ResolverSettings& settings,
                  TileScratch& scratch, FragmentTile& out) {
@@ -74,6 +98,7 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         resolver.reset(x, y);
         for (auto it = begin; it != end; ++it) resolver.insert(triangles[it->triangle]);
         const auto& frags = resolver.fragments();
+        for ([[maybe_unused]] const Fragment& f : frags) CLIPBLUR_DCHECK(wellFormed(f, x, y));
         out.fragments.insert(out.fragments.end(), frags.begin(), frags.end());
         out.covered_area[i] = resolver.coveredArea();
         out.dropped_area += resolver.droppedArea();
