@@ -1,0 +1,693 @@
+#include "scene/gltf_loader.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "scene/gltf_animation.h"
+#include "scene/scene_validation.h"
+#include "scene/tiny_gltf_config.h"
+
+namespace clipblur {
+
+namespace {
+
+std::string pointer(const char* array, std::size_t index) { return std::string("/") + array + "/" + std::to_string(index); }
+
+bool isGlb(const std::string& bytes) { return bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0; }
+
+// Textures are a later item: images are neither decoded nor read, only their URIs kept.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+// Tolerance of resampled motion, relative to the object's size: far below a pixel at any film size the
+// job allows (1e-4 of an object spanning a 16384-pixel film is 1.6 pixels only for a full-frame object
+// moved at the tolerance everywhere; typically the deviation is far smaller).
+constexpr double kRelativeTolerance = 1e-4;
+// A camera's tolerance: its position (units) and, through a unit box, its direction (radians).
+constexpr double kCameraTolerance = 1e-6;
+
+// Reads the model's accessors, checked against the spec and their buffers, and fails with the pointer
+// of what is wrong.
+class GltfReader {
+public:
+    GltfReader(const tinygltf::Model& model, const std::string& name, const GltfRequest& request)
+        : model_(model), name_(name), request_(request) {}
+
+    [[noreturn]] void fail(const std::string& where, const std::string& message) const {
+        const std::string ref = request_.ref.toString();
+        throw Error(ExitCode::Scene, where + ": " + message + (ref.empty() ? "" : " (glTF file of " + ref + ")"),
+                    FileLoc{name_, 0, 0});
+    }
+
+    // Every element of a float accessor of `components` numbers per element, checked finite.
+    std::vector<double> floats(int index, int type, const std::string& what) const {
+        const tinygltf::Accessor& a = accessor(index, what);
+        const std::string where = pointer("accessors", static_cast<std::size_t>(index));
+        if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != type)
+            fail(where, what + " must be float " + typeName(type));
+        std::vector<double> out;
+        const std::size_t n = components(type);
+        forEachElement(a, where, [&](const unsigned char* p) {
+            for (std::size_t c = 0; c < n; ++c) {
+                float v;
+                std::memcpy(&v, p + 4 * c, 4);
+                if (!std::isfinite(v)) fail(where, what + " holds a non-finite number");
+                out.push_back(v);
+            }
+        });
+        return out;
+    }
+
+    std::vector<std::uint32_t> indices(int index, std::size_t vertex_count) const {
+        const tinygltf::Accessor& a = accessor(index, "indices");
+        const std::string where = pointer("accessors", static_cast<std::size_t>(index));
+        const int ct = a.componentType;
+        if (a.type != TINYGLTF_TYPE_SCALAR ||
+            (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+             ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+            fail(where, "indices must be unsigned byte, short or int SCALAR");
+        std::vector<std::uint32_t> out;
+        forEachElement(a, where, [&](const unsigned char* p) {
+            std::uint32_t v = 0;
+            if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) v = *p;
+            if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+                std::uint16_t s;
+                std::memcpy(&s, p, 2);
+                v = s;
+            }
+            if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) std::memcpy(&v, p, 4);
+            if (v >= vertex_count)
+                fail(where, "index " + std::to_string(v) + " is out of range: the primitive has " +
+                                std::to_string(vertex_count) + " vertices");
+            out.push_back(v);
+        });
+        return out;
+    }
+
+    std::size_t count(int index, const std::string& what) const { return accessor(index, what).count; }
+
+private:
+    static std::size_t components(int type) {
+        switch (type) {
+            case TINYGLTF_TYPE_SCALAR: return 1;
+            case TINYGLTF_TYPE_VEC2: return 2;
+            case TINYGLTF_TYPE_VEC3: return 3;
+            case TINYGLTF_TYPE_VEC4: return 4;
+            default: return 0;
+        }
+    }
+
+    static std::string typeName(int type) {
+        switch (type) {
+            case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+            case TINYGLTF_TYPE_VEC3: return "VEC3";
+            case TINYGLTF_TYPE_VEC4: return "VEC4";
+            default: return "?";
+        }
+    }
+
+    static std::size_t componentBytes(int component_type) {
+        switch (component_type) {
+            case TINYGLTF_COMPONENT_TYPE_BYTE:
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+            case TINYGLTF_COMPONENT_TYPE_SHORT:
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+            default: return 0;
+        }
+    }
+
+    const tinygltf::Accessor& accessor(int index, const std::string& what) const {
+        if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size())
+            fail("/accessors", what + " names accessor " + std::to_string(index) + ", which does not exist");
+        return model_.accessors[static_cast<std::size_t>(index)];
+    }
+
+    // Calls visit with the first byte of every element, after checking that all of them lie in the buffer.
+    template <typename Visit>
+    void forEachElement(const tinygltf::Accessor& a, const std::string& where, Visit&& visit) const {
+        if (a.sparse.isSparse) fail(where, "sparse accessors are not supported");
+        if (a.count == 0) fail(where, "count must be at least 1");
+        const std::size_t element = componentBytes(a.componentType) * components(a.type);
+        if (element == 0) fail(where, "unsupported componentType or type");
+        if (a.bufferView < 0) {  // the spec's all-zero accessor
+            const std::vector<unsigned char> zeros(element, 0);
+            for (std::size_t i = 0; i < a.count; ++i) visit(zeros.data());
+            return;
+        }
+        if (static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size())
+            fail(where, "bufferView " + std::to_string(a.bufferView) + " does not exist");
+        const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+        const std::string view_where = pointer("bufferViews", static_cast<std::size_t>(a.bufferView));
+        if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size())
+            fail(view_where, "buffer " + std::to_string(view.buffer) + " does not exist");
+        const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
+        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+            fail(view_where, "byteOffset + byteLength lies beyond the buffer's " + std::to_string(data.size()) +
+                                 " bytes");
+        const std::size_t stride = view.byteStride == 0 ? element : view.byteStride;
+        if (stride < element) fail(view_where, "byteStride is smaller than an element of " + where);
+        const std::size_t size = view.byteLength;
+        if (a.byteOffset > size || a.count - 1 > (size - a.byteOffset) / stride ||
+            (a.count - 1) * stride + element > size - a.byteOffset)
+            fail(where, "count, byteOffset and stride reach beyond its bufferView");
+        const unsigned char* base = data.data() + view.byteOffset + a.byteOffset;
+        for (std::size_t i = 0; i < a.count; ++i) visit(base + i * stride);
+    }
+
+    const tinygltf::Model& model_;
+    const std::string& name_;
+    const GltfRequest& request_;
+};
+
+// A primitive's geometry before any node transform: positions, triangles, morph target offsets.
+struct PrimitiveGeometry {
+    std::vector<glm::dvec3> positions;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<std::vector<glm::dvec3>> targets;
+};
+
+std::vector<glm::dvec3> toVec3(const std::vector<double>& v) {
+    std::vector<glm::dvec3> out(v.size() / 3);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+    return out;
+}
+
+class SceneBuilder {
+public:
+    SceneBuilder(const tinygltf::Model& model, const std::string& name, const GltfRequest& request)
+        : model_(model), reader_(model, name, request), request_(request),
+          names_(request.taken_names.begin(), request.taken_names.end()) {}
+
+    GltfScene build() {
+        readMaterials();
+        readNodes();
+        readAnimations();
+        const int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (model_.scenes.empty()) reader_.fail("/scenes", "the file has no scene");
+        if (static_cast<std::size_t>(scene) >= model_.scenes.size())
+            reader_.fail("/scene", "scene " + std::to_string(scene) + " does not exist");
+        for (const int root : model_.scenes[static_cast<std::size_t>(scene)].nodes)
+            visit(root, {}, pointer("scenes", static_cast<std::size_t>(scene)) + "/nodes");
+        pickCamera();
+        if (!warnings_.empty()) out_.warnings.assign(warnings_.begin(), warnings_.end());
+        return std::move(out_);
+    }
+
+private:
+    void readMaterials() {
+        for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+            const tinygltf::Material& m = model_.materials[i];
+            const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
+            if (f.size() != 4 || !std::all_of(f.begin(), f.end(), [](double v) { return v >= 0.0 && v <= 1.0; }))
+                reader_.fail(pointer("materials", i) + "/pbrMetallicRoughness/baseColorFactor",
+                             "must be 4 numbers in [0, 1]");
+            Material mat;
+            mat.base_color = {f[0], f[1], f[2]};
+            mat.two_sided = m.doubleSided;
+            out_.materials.push_back(mat);
+            if (m.pbrMetallicRoughness.baseColorTexture.index >= 0)
+                warnings_.insert("glTF baseColorTexture is ignored (textures are not supported yet)");
+            if (m.extensions.count("KHR_materials_unlit"))
+                warnings_.insert("glTF KHR_materials_unlit is ignored (the shading has no unlit model)");
+            const bool emissive = std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(),
+                                              [](double v) { return v != 0.0; });
+            if (emissive || m.extensions.count("KHR_materials_emissive_strength"))
+                warnings_.insert("glTF emission is ignored (the shading has no emission)");
+        }
+        // The spec's default material: white, single-sided.
+        default_material_ = out_.materials.size();
+        out_.materials.push_back(Material{glm::dvec3(1.0), Texture{}, false});
+    }
+
+    void readNodes() {
+        nodes_.resize(model_.nodes.size());
+        for (std::size_t i = 0; i < model_.nodes.size(); ++i) {
+            const tinygltf::Node& n = model_.nodes[i];
+            AnimatedNode& a = nodes_[i];
+            const std::string where = pointer("nodes", i);
+            const auto finite = [&](const std::vector<double>& v, const char* what) {
+                if (!std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
+                    reader_.fail(where + "/" + what, "holds a non-finite number");
+            };
+            finite(n.translation, "translation");
+            finite(n.rotation, "rotation");
+            finite(n.scale, "scale");
+            finite(n.matrix, "matrix");
+            if (n.matrix.size() == 16) {
+                a.has_matrix = true;
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 4; ++r) a.matrix[c][r] = n.matrix[static_cast<std::size_t>(4 * c + r)];
+            }
+            if (n.translation.size() == 3) a.rest.translate = {n.translation[0], n.translation[1], n.translation[2]};
+            if (n.rotation.size() == 4) {
+                a.rest.rotate = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+                if (std::abs(glm::length(a.rest.rotate) - 1.0) > 1e-3) reader_.fail(where + "/rotation", "is not a unit quaternion");
+                // Unit to double precision: a float-rounded quaternion's matrix would shear by 1e-7.
+                a.rest.rotate = glm::normalize(a.rest.rotate);
+            }
+            if (n.scale.size() == 3) a.rest.scale = {n.scale[0], n.scale[1], n.scale[2]};
+        }
+    }
+
+    Track readTrack(std::size_t anim, const tinygltf::AnimationSampler& s, std::size_t width, bool rotation) {
+        const std::string where = pointer("animations", anim);
+        Track track;
+        track.width = width;
+        track.rotation = rotation;
+        if (s.interpolation == "STEP") track.interpolation = Interpolation::Step;
+        else if (s.interpolation == "CUBICSPLINE") track.interpolation = Interpolation::CubicSpline;
+        else if (s.interpolation != "LINEAR") reader_.fail(where, "unknown interpolation '" + s.interpolation + "'");
+        track.times = reader_.floats(s.input, TINYGLTF_TYPE_SCALAR, "an animation input");
+        for (std::size_t k = 1; k < track.times.size(); ++k)
+            if (!(track.times[k] > track.times[k - 1]))
+                reader_.fail(pointer("accessors", static_cast<std::size_t>(s.input)),
+                             "animation key times must increase strictly (key " + std::to_string(k) + ")");
+        for (double& t : track.times) t *= request_.fps;
+        const int type = weights_ ? TINYGLTF_TYPE_SCALAR : width == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
+        track.values = reader_.floats(s.output, type, "an animation output");
+        const std::size_t per_key = (track.interpolation == Interpolation::CubicSpline ? 3 : 1) * width;
+        if (track.values.size() != per_key * track.times.size())
+            reader_.fail(pointer("accessors", static_cast<std::size_t>(s.output)),
+                         "an animation output needs " + std::to_string(per_key) + " numbers per key time, " +
+                             std::to_string(track.times.size()) + " key times");
+        if (track.interpolation == Interpolation::CubicSpline)  // tangents per second to per frame
+            for (std::size_t k = 0; k < track.times.size(); ++k)
+                for (std::size_t i = 0; i < width; ++i) {
+                    track.values[k * per_key + i] /= request_.fps;
+                    track.values[k * per_key + 2 * width + i] /= request_.fps;
+                }
+        return track;
+    }
+
+    // Every animation plays from glTF time 0; a node property animated twice is refused.
+    void readAnimations() {
+        for (std::size_t a = 0; a < model_.animations.size(); ++a) {
+            const tinygltf::Animation& anim = model_.animations[a];
+            for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+                const tinygltf::AnimationChannel& ch = anim.channels[c];
+                const std::string where = pointer("animations", a) + "/channels/" + std::to_string(c);
+                if (ch.target_node < 0 || static_cast<std::size_t>(ch.target_node) >= nodes_.size())
+                    reader_.fail(where, "target node " + std::to_string(ch.target_node) + " does not exist");
+                if (ch.sampler < 0 || static_cast<std::size_t>(ch.sampler) >= anim.samplers.size())
+                    reader_.fail(where, "sampler " + std::to_string(ch.sampler) + " does not exist");
+                const auto node = static_cast<std::size_t>(ch.target_node);
+                const tinygltf::AnimationSampler& s = anim.samplers[static_cast<std::size_t>(ch.sampler)];
+                if (!targeted_.insert({node, ch.target_path}).second)
+                    reader_.fail(where, "node " + std::to_string(node) + " " + ch.target_path + " is animated twice");
+                if (nodes_[node].has_matrix)
+                    reader_.fail(where, "targets node " + std::to_string(node) + ", which is given by a matrix");
+                weights_ = ch.target_path == "weights";
+                const Track* track = nullptr;
+                if (ch.target_path == "translation" || ch.target_path == "scale") {
+                    track = &tracks_.emplace_back(readTrack(a, s, 3, false));
+                    (ch.target_path == "scale" ? nodes_[node].scale : nodes_[node].translation) = track;
+                } else if (ch.target_path == "rotation") {
+                    nodes_[node].rotation = &tracks_.emplace_back(readTrack(a, s, 4, true));
+                } else if (weights_) {
+                    weight_tracks_[node] = &tracks_.emplace_back(readTrack(a, s, targetCount(node, where), false));
+                } else {
+                    reader_.fail(where, "unknown target path '" + ch.target_path + "'");
+                }
+            }
+        }
+        weights_ = false;
+    }
+
+    std::size_t targetCount(std::size_t node, const std::string& where) const {
+        const int mesh = model_.nodes[node].mesh;
+        if (mesh < 0 || static_cast<std::size_t>(mesh) >= model_.meshes.size() ||
+            model_.meshes[static_cast<std::size_t>(mesh)].primitives.empty() ||
+            model_.meshes[static_cast<std::size_t>(mesh)].primitives[0].targets.empty())
+            reader_.fail(where, "animates weights of a node without a morphed mesh");
+        return model_.meshes[static_cast<std::size_t>(mesh)].primitives[0].targets.size();
+    }
+
+    void visit(int index, std::vector<std::size_t> chain, const std::string& where) {
+        if (index < 0 || static_cast<std::size_t>(index) >= nodes_.size())
+            reader_.fail(where, "node " + std::to_string(index) + " does not exist");
+        const auto node = static_cast<std::size_t>(index);
+        if (!visited_.insert(node).second)
+            reader_.fail(pointer("nodes", node), "the node has two parents or lies on a cycle");
+        chain.push_back(node);
+        const tinygltf::Node& n = model_.nodes[node];
+        if (n.mesh >= 0) addMeshInstance(chain);
+        if (n.camera >= 0) cameras_.push_back(chain);
+        for (const int child : n.children) visit(child, chain, pointer("nodes", node) + "/children");
+    }
+
+    // Nodes of the chain from the deepest animated one down are split: the motion above, a static tail.
+    struct SplitChain {
+        ChainMotion motion;
+        glm::dmat4 tail{1.0};
+        bool animated = false;
+    };
+
+    SplitChain split(const std::vector<std::size_t>& chain) const {
+        SplitChain s;
+        std::size_t deepest = chain.size();
+        for (std::size_t i = 0; i < chain.size(); ++i)
+            if (nodes_[chain[i]].animated()) deepest = i;
+        s.animated = deepest < chain.size();
+        const std::size_t tail_from = s.animated ? deepest + 1 : 0;
+        for (std::size_t i = 0; i < tail_from; ++i) s.motion.chain.push_back(&nodes_[chain[i]]);
+        for (std::size_t i = tail_from; i < chain.size(); ++i) s.tail = s.tail * nodes_[chain[i]].local(0.0);
+        return s;
+    }
+
+    std::string uniqueName(std::string name) {
+        if (name.empty()) name = "node";
+        std::string candidate = name;
+        for (int k = 2; !names_.insert(candidate).second; ++k) candidate = name + "#" + std::to_string(k);
+        return candidate;
+    }
+
+    PrimitiveGeometry readPrimitive(const tinygltf::Primitive& p, const std::string& where) {
+        PrimitiveGeometry g;
+        const auto pos = p.attributes.find("POSITION");
+        if (pos == p.attributes.end()) reader_.fail(where + "/attributes", "POSITION is missing");
+        g.positions = toVec3(reader_.floats(pos->second, TINYGLTF_TYPE_VEC3, "POSITION"));
+        for (const glm::dvec3& v : g.positions)
+            if (std::abs(v.x) > kMaxCoordinate || std::abs(v.y) > kMaxCoordinate || std::abs(v.z) > kMaxCoordinate)
+                reader_.fail(pointer("accessors", static_cast<std::size_t>(pos->second)), "a position beyond 1e8");
+        std::vector<std::uint32_t> idx;
+        if (p.indices >= 0) {
+            idx = reader_.indices(p.indices, g.positions.size());
+        } else {
+            idx.resize(g.positions.size());
+            for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<std::uint32_t>(i);
+        }
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (idx.size() % 3 != 0) reader_.fail(where, "TRIANGLES needs a multiple of 3 indices");
+            for (std::size_t i = 0; i + 2 < idx.size(); i += 3) g.triangles.push_back({idx[i], idx[i + 1], idx[i + 2]});
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (std::size_t i = 0; i + 2 < idx.size(); ++i)
+                g.triangles.push_back(i % 2 == 0 ? std::array{idx[i], idx[i + 1], idx[i + 2]}
+                                                 : std::array{idx[i + 1], idx[i], idx[i + 2]});
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            for (std::size_t i = 1; i + 1 < idx.size(); ++i) g.triangles.push_back({idx[0], idx[i], idx[i + 1]});
+        }
+        for (std::size_t t = 0; t < p.targets.size(); ++t) {
+            const auto d = p.targets[t].find("POSITION");
+            std::vector<glm::dvec3> delta(g.positions.size(), glm::dvec3(0.0));
+            if (d != p.targets[t].end()) delta = toVec3(reader_.floats(d->second, TINYGLTF_TYPE_VEC3, "a morph target POSITION"));
+            if (delta.size() != g.positions.size())
+                reader_.fail(where + "/targets/" + std::to_string(t), "POSITION count differs from the primitive's");
+            g.targets.push_back(std::move(delta));
+        }
+        return g;
+    }
+
+    std::vector<double> restWeights(std::size_t node, std::size_t targets) const {
+        const tinygltf::Node& n = model_.nodes[node];
+        const std::vector<double>& w = !n.weights.empty() ? n.weights
+                                                          : model_.meshes[static_cast<std::size_t>(n.mesh)].weights;
+        if (w.empty()) return std::vector<double>(targets, 0.0);
+        if (w.size() != targets) reader_.fail(pointer("nodes", node), "weights count differs from the morph targets'");
+        return w;
+    }
+
+    void addMeshInstance(const std::vector<std::size_t>& chain);
+    void buildObject(const std::vector<std::size_t>& chain, std::size_t prim, PrimitiveGeometry g);
+    void followMorph(Object& object, const PrimitiveGeometry& g, const Track& weights, const std::string& where);
+    void checkJumps(const KeyPlan& plan, const std::string& where) const;
+    void pickCamera();
+
+    const tinygltf::Model& model_;
+    GltfReader reader_;
+    const GltfRequest& request_;
+    GltfScene out_;
+    std::size_t default_material_ = 0;
+    std::vector<AnimatedNode> nodes_;
+    std::deque<Track> tracks_;
+    std::map<std::size_t, const Track*> weight_tracks_;
+    std::set<std::pair<std::size_t, std::string>> targeted_;
+    bool weights_ = false;
+    std::set<std::size_t> visited_;
+    std::set<std::string> names_;
+    std::set<std::string> warnings_;
+    std::vector<std::vector<std::size_t>> cameras_;
+    std::uint64_t triangles_ = 0;
+};
+
+void SceneBuilder::addMeshInstance(const std::vector<std::size_t>& chain) {
+    const std::size_t node = chain.back();
+    const tinygltf::Node& n = model_.nodes[node];
+    if (static_cast<std::size_t>(n.mesh) >= model_.meshes.size())
+        reader_.fail(pointer("nodes", node), "mesh " + std::to_string(n.mesh) + " does not exist");
+    if (n.skin >= 0) reader_.fail(pointer("nodes", node), "skinned meshes are not supported yet");
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(n.mesh)];
+    const std::string mesh_where = pointer("meshes", static_cast<std::size_t>(n.mesh));
+    for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
+        const tinygltf::Primitive& p = mesh.primitives[i];
+        const std::string where = mesh_where + "/primitives/" + std::to_string(i);
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        if (mode < TINYGLTF_MODE_TRIANGLES) {
+            warnings_.insert("glTF points and lines are skipped (" + where + " and any others)");
+            continue;
+        }
+        if (mode > TINYGLTF_MODE_TRIANGLE_FAN) reader_.fail(where, "unknown mode " + std::to_string(mode));
+        if (p.attributes.count("JOINTS_0")) reader_.fail(where, "skinned meshes are not supported yet");
+        if (p.targets.size() != mesh.primitives[0].targets.size())
+            reader_.fail(where, "primitives of one mesh must have the same number of morph targets");
+        PrimitiveGeometry g = readPrimitive(p, where);
+        triangles_ += g.triangles.size();
+        if (triangles_ > request_.max_triangles)
+            reader_.fail(where, "the scene has more than " + std::to_string(request_.max_triangles) + " triangles");
+        if (g.triangles.empty()) {
+            warnings_.insert("glTF primitives without triangles are skipped (" + where + " and any others)");
+            continue;
+        }
+        buildObject(chain, i, std::move(g));
+    }
+}
+
+void SceneBuilder::checkJumps(const KeyPlan& plan, const std::string& where) const {
+    const Shutter& s = request_.shutter;
+    for (std::size_t i = 0; i + 1 < plan.times.size(); ++i) {
+        if (!plan.jump_after[i]) continue;
+        // Frames k whose open shutter (k + open, k + close) meets the jump window (h, j).
+        const double h = plan.times[i];
+        const double j = plan.times[i + 1];
+        const double lo = std::max(static_cast<double>(request_.frames.first), std::floor(h - s.close) + 1.0);
+        const double hi = std::min(static_cast<double>(request_.frames.last), std::ceil(j - s.open) - 1.0);
+        if (lo <= hi)
+            reader_.fail(where, "a STEP key jumps at frame " + std::to_string(j) + ", inside the shutter of frame " +
+                                    std::to_string(static_cast<long long>(lo)) +
+                                    ": a jump within the shutter cannot be rendered");
+    }
+}
+
+void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_t prim, PrimitiveGeometry g) {
+    const std::size_t node = chain.back();
+    const tinygltf::Node& n = model_.nodes[node];
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(n.mesh)];
+    const std::string where = pointer("nodes", node);
+    const SplitChain s = split(chain);
+    // The static tail is folded into the mesh, the offsets by its linear part only.
+    for (glm::dvec3& p : g.positions) p = glm::dvec3(s.tail * glm::dvec4(p, 1.0));
+    for (auto& target : g.targets)
+        for (glm::dvec3& d : target) d = glm::dvec3(s.tail * glm::dvec4(d, 0.0));
+
+    Object object;
+    object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
+    object.loc = request_.ref;
+    const int material = mesh.primitives[prim].material;
+    if (material >= static_cast<int>(model_.materials.size()))
+        reader_.fail(pointer("meshes", static_cast<std::size_t>(n.mesh)) + "/primitives/" + std::to_string(prim),
+                     "material " + std::to_string(material) + " does not exist");
+    object.material = material < 0 ? static_cast<int>(default_material_) : material;
+    object.mesh.triangles = g.triangles;
+    object.mesh.positions = g.positions;
+    const std::vector<double> rest = restWeights(node, g.targets.size());
+    for (std::size_t t = 0; t < g.targets.size(); ++t)
+        for (std::size_t v = 0; v < g.positions.size(); ++v) object.mesh.positions[v] += rest[t] * g.targets[t][v];
+    const auto weights = weight_tracks_.find(node);
+    if (weights != weight_tracks_.end()) followMorph(object, g, *weights->second, where);
+
+    if (s.animated) {
+        glm::dvec3 lo(std::numeric_limits<double>::max());
+        glm::dvec3 hi(std::numeric_limits<double>::lowest());
+        const auto grow = [&](const std::vector<glm::dvec3>& ps) {
+            for (const glm::dvec3& p : ps) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+        };
+        grow(object.mesh.positions);
+        for (const DeformationKey& k : object.deformation) grow(k.positions);
+        ResampleSpec spec;
+        for (int c = 0; c < 8; ++c) spec.corners.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+        const KeyPlan plan = planKeys(s.motion);
+        checkJumps(plan, where);
+        const glm::dmat4 first = s.motion.world(plan.times.front());
+        const double size = glm::length(glm::dvec3(first * glm::dvec4(hi, 1.0)) - glm::dvec3(first * glm::dvec4(lo, 1.0)));
+        spec.tolerance = std::max(kRelativeTolerance * size, 1e-12);
+        spec.max_keys = request_.max_transform_keys;
+        try {
+            object.transform = followChain(s.motion, plan, spec);
+        } catch (const std::domain_error& e) {
+            reader_.fail(where, std::string("its world transform has ") + e.what() + ", which transform keys cannot hold");
+        } catch (const std::length_error&) {
+            reader_.fail(where, "its motion needs more than " + std::to_string(spec.max_keys) + " transform keys");
+        }
+    }
+    out_.objects.push_back(std::move(object));
+}
+
+void SceneBuilder::followMorph(Object& object, const PrimitiveGeometry& g, const Track& weights, const std::string& where) {
+    const auto at = [&](double t) {
+        std::vector<double> w(weights.width);
+        weights.eval(t, w.data());
+        DeformationKey key{t, g.positions};
+        for (std::size_t i = 0; i < w.size(); ++i)
+            for (std::size_t v = 0; v < key.positions.size(); ++v) key.positions[v] += w[i] * g.targets[i][v];
+        return key;
+    };
+    // The weight keys, with STEP holds; exact for LINEAR and STEP (positions are linear in the weights).
+    const KeyPlan plan = planTimes({&weights});
+    checkJumps(plan, where + "/weights");
+    std::vector<DeformationKey> keys{at(plan.times.front())};
+    double size = 0.0;
+    for (const glm::dvec3& p : keys[0].positions) size = std::max(size, glm::length(p - keys[0].positions[0]));
+    const double tolerance = std::max(kRelativeTolerance * size, 1e-12);
+    const auto deviation = [&](const DeformationKey& a, const DeformationKey& b, double u) {
+        const DeformationKey exact = at(a.time + u * (b.time - a.time));
+        double worst = 0.0;
+        for (std::size_t v = 0; v < exact.positions.size(); ++v)
+            worst = std::max(worst, glm::length(glm::mix(a.positions[v], b.positions[v], u) - exact.positions[v]));
+        return worst;
+    };
+    std::size_t i = 1;
+    while (i < plan.times.size()) {
+        DeformationKey next = at(plan.times[i]);
+        // CUBICSPLINE weights: halve the interval until the quarter points lie within the tolerance.
+        while (weights.interpolation == Interpolation::CubicSpline && !plan.jump_after[i - 1] &&
+               keys.size() < request_.max_deformation_keys &&
+               std::max({deviation(keys.back(), next, 0.25), deviation(keys.back(), next, 0.5),
+                         deviation(keys.back(), next, 0.75)}) > tolerance)
+            next = at(0.5 * (keys.back().time + next.time));
+        if (next.time == plan.times[i]) ++i;
+        keys.push_back(std::move(next));
+        if (keys.size() > request_.max_deformation_keys)
+            reader_.fail(where + "/weights", "the morph needs more than " +
+                                                 std::to_string(request_.max_deformation_keys) + " deformation keys");
+    }
+    object.mesh.positions = keys.front().positions;
+    object.deformation = std::move(keys);
+}
+
+void SceneBuilder::pickCamera() {
+    std::vector<std::size_t> matches;
+    for (std::size_t i = 0; i < cameras_.size(); ++i) {
+        const tinygltf::Node& n = model_.nodes[cameras_[i].back()];
+        if (static_cast<std::size_t>(n.camera) >= model_.cameras.size())
+            reader_.fail(pointer("nodes", cameras_[i].back()), "camera " + std::to_string(n.camera) + " does not exist");
+        const std::string& camera_name = model_.cameras[static_cast<std::size_t>(n.camera)].name;
+        if (request_.camera_name.empty() || n.name == request_.camera_name || camera_name == request_.camera_name)
+            matches.push_back(i);
+    }
+    if (!request_.camera_name.empty()) {
+        if (matches.empty())
+            throwConfigError(request_.camera_ref, "no camera node or camera named '" + request_.camera_name + "' in " +
+                                                      request_.ref.toString());
+        if (matches.size() > 1)
+            throwConfigError(request_.camera_ref, "'" + request_.camera_name + "' names " +
+                                                      std::to_string(matches.size()) + " camera nodes; name one node");
+    }
+    if (matches.empty()) return;
+    const std::vector<std::size_t>& chain = cameras_[matches.front()];
+    const std::size_t node = chain.back();
+    const std::string where = pointer("cameras", static_cast<std::size_t>(model_.nodes[node].camera));
+    const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(model_.nodes[node].camera)];
+    if (c.type != "perspective") reader_.fail(where, "only perspective cameras are supported");
+    const double yfov = c.perspective.yfov;
+    if (!(yfov > 0.0 && yfov * 180.0 / M_PI <= 179.0)) reader_.fail(where + "/perspective/yfov", "must be in (0, 179] degrees");
+    if (!(c.perspective.aspectRatio >= 0.0) || !std::isfinite(c.perspective.aspectRatio))
+        reader_.fail(where + "/perspective/aspectRatio", "must be a positive number");
+    Camera camera;
+    camera.vfov_degrees = yfov * 180.0 / M_PI;
+    out_.camera_aspect = c.perspective.aspectRatio;
+    SplitChain s = split(chain);
+    s.motion.tail = s.tail;
+    s.motion.rigid = true;
+    if (!s.animated) s.motion.chain.clear();
+    const KeyPlan plan = s.animated ? planKeys(s.motion) : KeyPlan{{0.0}, {false}, true};
+    checkJumps(plan, pointer("nodes", node));
+    ResampleSpec spec;
+    for (int k = 0; k < 8; ++k) spec.corners.push_back({k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0});
+    spec.tolerance = kCameraTolerance;
+    spec.max_keys = request_.max_transform_keys;
+    std::vector<TransformKey> keys;
+    try {
+        keys = followChain(s.motion, plan, spec);
+    } catch (const std::domain_error& e) {
+        reader_.fail(pointer("nodes", node), std::string("the camera's world transform has ") + e.what());
+    } catch (const std::length_error&) {
+        reader_.fail(pointer("nodes", node), "the camera's motion needs more than " + std::to_string(spec.max_keys) + " keys");
+    }
+    for (const TransformKey& k : keys)
+        camera.keys.push_back({k.time, k.translate, k.rotate * glm::dvec3(0, 0, -1), k.rotate * glm::dvec3(0, 1, 0)});
+    out_.camera = camera;
+}
+
+GltfScene buildScene(tinygltf::Model& model, const std::string& name, const GltfRequest& request) {
+    return SceneBuilder(model, name, request).build();
+}
+
+}  // namespace
+
+GltfScene parseGltfScene(const std::string& bytes, const std::string& name, const std::filesystem::path& base,
+                         const GltfRequest& request) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err;
+    std::string warn;
+    bool ok = false;
+    try {
+        if (isGlb(bytes))
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             static_cast<unsigned int>(bytes.size()), base.string());
+        else
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
+                                            base.string());
+    } catch (const std::exception& e) {
+        err = e.what();
+    }
+    if (!ok) {
+        while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+        const std::string ref = request.ref.toString();
+        throw Error(ExitCode::Scene, "not a valid glTF file: " + (err.empty() ? std::string("unreadable") : err) +
+                                         (ref.empty() ? "" : " (glTF file of " + ref + ")"),
+                    FileLoc{name, 0, 0});
+    }
+    return buildScene(model, name, request);
+}
+
+GltfScene loadGltfScene(const std::filesystem::path& file, const GltfRequest& request) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(file, ec);
+    if (ec || !std::filesystem::is_regular_file(file))
+        throwSceneError(request.ref, "cannot read glTF file '" + file.string() + "'");
+    if (size > kMaxGltfFileBytes)
+        throwSceneError(request.ref, "glTF file '" + file.string() + "' is larger than 512 MiB");
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) throwSceneError(request.ref, "cannot read glTF file '" + file.string() + "'");
+    return parseGltfScene(bytes, file.string(), file.parent_path(), request);
+}
+
+}  // namespace clipblur
