@@ -25,14 +25,6 @@ void writeQuat(const glm::dquat& q, double* out) {
     out[3] = q.w;
 }
 
-// glTF 2.0 Appendix C: the cubic Hermite spline with tangents scaled by the key interval.
-double hermite(double v0, double out0, double in1, double v1, double dt, double u) {
-    const double u2 = u * u;
-    const double u3 = u2 * u;
-    return (2 * u3 - 3 * u2 + 1) * v0 + dt * (u3 - 2 * u2 + u) * out0 + (-2 * u3 + 3 * u2) * v1 +
-           dt * (u3 - u2) * in1;
-}
-
 }  // namespace
 
 glm::dmat4 trsMatrix(const NodeTrs& trs) {
@@ -58,11 +50,18 @@ void Track::eval(double t, double* out) const {
         return;
     }
     if (interpolation == Interpolation::CubicSpline) {
+        // glTF 2.0 Appendix C: the cubic Hermite spline, tangents scaled by the key interval.
         const double dt = times[k + 1] - times[k];
+        const double u2 = u * u;
+        const double u3 = u2 * u;
+        const double h00 = 2 * u3 - 3 * u2 + 1;
+        const double h10 = dt * (u3 - 2 * u2 + u);
+        const double h01 = -2 * u3 + 3 * u2;
+        const double h11 = dt * (u3 - u2);
         const double* out_tangent = values.data() + k * stride + 2 * width;
         const double* in_tangent = values.data() + (k + 1) * stride;
         for (std::size_t i = 0; i < width; ++i)
-            out[i] = hermite(value(k)[i], out_tangent[i], in_tangent[i], value(k + 1)[i], dt, u);
+            out[i] = h00 * value(k)[i] + h10 * out_tangent[i] + h01 * value(k + 1)[i] + h11 * in_tangent[i];
         if (rotation) writeQuat(glm::normalize(quatAt(out)), out);
         return;
     }
@@ -213,23 +212,26 @@ double deviation(const ChainMotion& motion, const TransformKey& a, const Transfo
 }
 
 // Appends keys strictly inside (a, b) and then b, bisecting where the keys stray beyond the tolerance.
-void refine(const ChainMotion& motion, const TransformKey& a, const TransformKey& b, const ResampleSpec& spec,
-            std::vector<TransformKey>& out, int depth) {
-    bool fine = depth >= 40;
-    if (!fine) {
-        fine = true;
-        for (const double q : {0.25, 0.5, 0.75})
-            if (deviation(motion, a, b, a.time + q * (b.time - a.time), spec.corners) > spec.tolerance) fine = false;
+struct Refinement {
+    const ChainMotion& motion;
+    const ResampleSpec& spec;
+    std::vector<TransformKey>& out;
+
+    void run(const TransformKey& a, const TransformKey& b, int depth) {
+        bool fine = true;
+        if (depth < 40)
+            for (const double q : {0.25, 0.5, 0.75})
+                if (deviation(motion, a, b, a.time + q * (b.time - a.time), spec.corners) > spec.tolerance) fine = false;
+        if (!fine) {
+            const TransformKey mid = keyAt(motion, 0.5 * (a.time + b.time));
+            run(a, mid, depth + 1);
+            run(mid, b, depth + 1);
+            return;
+        }
+        out.push_back(b);
+        if (out.size() > spec.max_keys) throw std::length_error("too many keys");
     }
-    if (!fine) {
-        const TransformKey mid = keyAt(motion, 0.5 * (a.time + b.time));
-        refine(motion, a, mid, spec, out, depth + 1);
-        refine(motion, mid, b, spec, out, depth + 1);
-        return;
-    }
-    out.push_back(b);
-    if (out.size() > spec.max_keys) throw std::length_error("too many keys");
-}
+};
 
 }  // namespace
 
@@ -244,7 +246,7 @@ std::vector<TransformKey> followChain(const ChainMotion& motion, const KeyPlan& 
             if (keys.size() > spec.max_keys) throw std::length_error("too many keys");
         } else {
             const TransformKey start = keys.back();
-            refine(motion, start, next, spec, keys, 0);
+            Refinement{motion, spec, keys}.run(start, next, 0);
         }
     }
     return keys;

@@ -33,6 +33,10 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
 // job allows (1e-4 of an object spanning a 16384-pixel film is 1.6 pixels only for a full-frame object
 // moved at the tolerance everywhere; typically the deviation is far smaller).
 constexpr double kRelativeTolerance = 1e-4;
+// Elements per accessor: an all-zero accessor (no bufferView) costs no bytes of the file.
+constexpr std::size_t kMaxAccessorCount = std::size_t{1} << 25;
+// Deformation keys times vertices of one morphed object (24 bytes each).
+constexpr std::size_t kMaxMorphPositions = std::size_t{1} << 25;
 // A camera's tolerance: its position (units) and, through a unit box, its direction (radians).
 constexpr double kCameraTolerance = 1e-6;
 
@@ -139,6 +143,8 @@ private:
     void forEachElement(const tinygltf::Accessor& a, const std::string& where, Visit&& visit) const {
         if (a.sparse.isSparse) fail(where, "sparse accessors are not supported");
         if (a.count == 0) fail(where, "count must be at least 1");
+        if (a.count > kMaxAccessorCount)
+            fail(where, "count " + std::to_string(a.count) + " is beyond the limit of " + std::to_string(kMaxAccessorCount));
         const std::size_t element = componentBytes(a.componentType) * components(a.type);
         if (element == 0) fail(where, "unsupported componentType or type");
         if (a.bufferView < 0) {  // the spec's all-zero accessor
@@ -261,11 +267,19 @@ private:
         }
     }
 
-    Track readTrack(std::size_t anim, const tinygltf::AnimationSampler& s, std::size_t width, bool rotation) {
+    // What a channel's output holds: `width` numbers per key, as accessor `type`.
+    struct TrackShape {
+        std::size_t width = 3;
+        int type = TINYGLTF_TYPE_VEC3;
+        bool rotation = false;
+    };
+
+    Track readTrack(std::size_t anim, const tinygltf::AnimationSampler& s, const TrackShape& shape) {
         const std::string where = pointer("animations", anim);
         Track track;
-        track.width = width;
-        track.rotation = rotation;
+        track.width = shape.width;
+        track.rotation = shape.rotation;
+        const std::size_t width = shape.width;
         if (s.interpolation == "STEP") track.interpolation = Interpolation::Step;
         else if (s.interpolation == "CUBICSPLINE") track.interpolation = Interpolation::CubicSpline;
         else if (s.interpolation != "LINEAR") reader_.fail(where, "unknown interpolation '" + s.interpolation + "'");
@@ -275,8 +289,7 @@ private:
                 reader_.fail(pointer("accessors", static_cast<std::size_t>(s.input)),
                              "animation key times must increase strictly (key " + std::to_string(k) + ")");
         for (double& t : track.times) t *= request_.fps;
-        const int type = weights_ ? TINYGLTF_TYPE_SCALAR : width == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
-        track.values = reader_.floats(s.output, type, "an animation output");
+        track.values = reader_.floats(s.output, shape.type, "an animation output");
         const std::size_t per_key = (track.interpolation == Interpolation::CubicSpline ? 3 : 1) * width;
         if (track.values.size() != per_key * track.times.size())
             reader_.fail(pointer("accessors", static_cast<std::size_t>(s.output)),
@@ -308,21 +321,20 @@ private:
                     reader_.fail(where, "node " + std::to_string(node) + " " + ch.target_path + " is animated twice");
                 if (nodes_[node].has_matrix)
                     reader_.fail(where, "targets node " + std::to_string(node) + ", which is given by a matrix");
-                weights_ = ch.target_path == "weights";
-                const Track* track = nullptr;
                 if (ch.target_path == "translation" || ch.target_path == "scale") {
-                    track = &tracks_.emplace_back(readTrack(a, s, 3, false));
+                    const Track* track = &tracks_.emplace_back(readTrack(a, s, TrackShape{}));
                     (ch.target_path == "scale" ? nodes_[node].scale : nodes_[node].translation) = track;
                 } else if (ch.target_path == "rotation") {
-                    nodes_[node].rotation = &tracks_.emplace_back(readTrack(a, s, 4, true));
-                } else if (weights_) {
-                    weight_tracks_[node] = &tracks_.emplace_back(readTrack(a, s, targetCount(node, where), false));
+                    const TrackShape shape{4, TINYGLTF_TYPE_VEC4, true};
+                    nodes_[node].rotation = &tracks_.emplace_back(readTrack(a, s, shape));
+                } else if (ch.target_path == "weights") {
+                    const TrackShape shape{targetCount(node, where), TINYGLTF_TYPE_SCALAR, false};
+                    weight_tracks_[node] = &tracks_.emplace_back(readTrack(a, s, shape));
                 } else {
                     reader_.fail(where, "unknown target path '" + ch.target_path + "'");
                 }
             }
         }
-        weights_ = false;
     }
 
     std::size_t targetCount(std::size_t node, const std::string& where) const {
@@ -434,7 +446,6 @@ private:
     std::deque<Track> tracks_;
     std::map<std::size_t, const Track*> weight_tracks_;
     std::set<std::pair<std::size_t, std::string>> targeted_;
-    bool weights_ = false;
     std::set<std::size_t> visited_;
     std::set<std::string> names_;
     std::set<std::string> warnings_;
@@ -581,9 +592,11 @@ void SceneBuilder::followMorph(Object& object, const PrimitiveGeometry& g, const
             next = at(0.5 * (keys.back().time + next.time));
         if (next.time == plan.times[i]) ++i;
         keys.push_back(std::move(next));
-        if (keys.size() > request_.max_deformation_keys)
+        if (keys.size() > request_.max_deformation_keys || keys.size() * g.positions.size() > kMaxMorphPositions)
             reader_.fail(where + "/weights", "the morph needs more than " +
-                                                 std::to_string(request_.max_deformation_keys) + " deformation keys");
+                                                 std::to_string(request_.max_deformation_keys) +
+                                                 " deformation keys or more than " + std::to_string(kMaxMorphPositions) +
+                                                 " key positions");
     }
     object.mesh.positions = keys.front().positions;
     object.deformation = std::move(keys);
@@ -624,7 +637,11 @@ void SceneBuilder::pickCamera() {
     s.motion.tail = s.tail;
     s.motion.rigid = true;
     if (!s.animated) s.motion.chain.clear();
-    const KeyPlan plan = s.animated ? planKeys(s.motion) : KeyPlan{{0.0}, {false}, true};
+    KeyPlan still;
+    still.times = {0.0};
+    still.jump_after = {false};
+    still.exact = true;
+    const KeyPlan plan = s.animated ? planKeys(s.motion) : still;
     checkJumps(plan, pointer("nodes", node));
     ResampleSpec spec;
     for (int k = 0; k < 8; ++k) spec.corners.push_back({k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0});
