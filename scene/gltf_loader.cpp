@@ -37,6 +37,8 @@ constexpr double kRelativeTolerance = 1e-4;
 constexpr std::size_t kMaxAccessorCount = std::size_t{1} << 25;
 // Deformation keys times vertices of one morphed object (24 bytes each).
 constexpr std::size_t kMaxMorphPositions = std::size_t{1} << 25;
+// Nodes from a root to a leaf: the walk recurses, and every object composes its whole chain.
+constexpr std::size_t kMaxHierarchyDepth = 1024;
 // A camera's tolerance: its position (units) and, through a unit box, its direction (radians).
 constexpr double kCameraTolerance = 1e-6;
 
@@ -350,6 +352,8 @@ private:
         if (index < 0 || static_cast<std::size_t>(index) >= nodes_.size())
             reader_.fail(where, "node " + std::to_string(index) + " does not exist");
         const auto node = static_cast<std::size_t>(index);
+        if (chain.size() >= kMaxHierarchyDepth)
+            reader_.fail(pointer("nodes", node), "the hierarchy is deeper than " + std::to_string(kMaxHierarchyDepth) + " levels");
         if (!visited_.insert(node).second)
             reader_.fail(pointer("nodes", node), "the node has two parents or lies on a cycle");
         chain.push_back(node);

@@ -413,6 +413,11 @@ TEST(GltfLoader, BadFilesAreRefusedWithTheFileAndTheJsonPointer) {
         {"bad_node", [](GltfWriter& w) { w.doc()["scenes"][0]["nodes"] = {4}; }, "/scenes/0/nodes: node 4 does not exist"},
         {"skin", [](GltfWriter& w) { w.doc()["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = 0; },
          "/meshes/0/primitives/0: skinned meshes are not supported yet"},
+        {"deep", [](GltfWriter& w) {
+             for (int i = 0; i < 1100; ++i) w.doc()["nodes"].push_back({{"children", {i + 1 < 1100 ? 2 + i : 0}}});
+             w.doc()["scenes"][0]["nodes"] = {1};
+         },
+         "/nodes/1025: the hierarchy is deeper than 1024 levels"},
         {"interp", [](GltfWriter& w) { w.doc()["animations"][0]["samplers"][0]["interpolation"] = "SMOOTH"; },
          "/animations/0: unknown interpolation 'SMOOTH'"},
     };
