@@ -199,6 +199,12 @@ public:
           names_(request.taken_names.begin(), request.taken_names.end()) {}
 
     GltfScene build() {
+        // A required extension changes what the file means; those ignored here only change shading.
+        for (std::size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
+            const std::string& e = model_.extensionsRequired[i];
+            if (e != "KHR_materials_unlit" && e != "KHR_materials_emissive_strength")
+                reader_.fail("/extensionsRequired/" + std::to_string(i), "extension " + e + " is not supported");
+        }
         readMaterials();
         readNodes();
         readAnimations();

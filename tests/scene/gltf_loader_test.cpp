@@ -418,6 +418,11 @@ TEST(GltfLoader, BadFilesAreRefusedWithTheFileAndTheJsonPointer) {
              w.doc()["scenes"][0]["nodes"] = {1};
          },
          "/nodes/1025: the hierarchy is deeper than 1024 levels"},
+        {"draco", [](GltfWriter& w) {
+             w.doc()["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+             w.doc()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+         },
+         "/extensionsRequired/0: extension KHR_draco_mesh_compression is not supported"},
         {"interp", [](GltfWriter& w) { w.doc()["animations"][0]["samplers"][0]["interpolation"] = "SMOOTH"; },
          "/animations/0: unknown interpolation 'SMOOTH'"},
     };
