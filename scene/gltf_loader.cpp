@@ -7,8 +7,10 @@
 #include <cmath>
 #include <deque>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
@@ -29,10 +31,11 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
     return true;
 }
 
-// Tolerance of resampled motion, relative to the object's size: far below a pixel at any film size the
-// job allows (1e-4 of an object spanning a 16384-pixel film is 1.6 pixels only for a full-frame object
-// moved at the tolerance everywhere; typically the deviation is far smaller).
-constexpr double kRelativeTolerance = 1e-4;
+// The stated bound of resampled motion, relative to the object's size: a hundredth of a pixel for an
+// object 100 pixels across. Intervals are halved until their quarter points lie within half of it, the
+// margin for the deviation between the points checked.
+constexpr double kRelativeBound = 1e-4;
+constexpr double kRelativeTolerance = 0.5 * kRelativeBound;
 // Elements per accessor: an all-zero accessor (no bufferView) costs no bytes of the file.
 constexpr std::size_t kMaxAccessorCount = std::size_t{1} << 25;
 // Deformation keys times vertices of one morphed object (24 bytes each).
@@ -74,29 +77,34 @@ public:
         return out;
     }
 
-    std::vector<std::uint32_t> indices(int index, std::size_t vertex_count) const {
-        const tinygltf::Accessor& a = accessor(index, "indices");
+    // Every component of an unsigned byte, short or int accessor of `type`.
+    std::vector<std::uint32_t> unsignedInts(int index, int type, const std::string& what) const {
+        const tinygltf::Accessor& a = accessor(index, what);
         const std::string where = pointer("accessors", static_cast<std::size_t>(index));
         const int ct = a.componentType;
-        if (a.type != TINYGLTF_TYPE_SCALAR ||
+        if (a.type != type || a.normalized ||
             (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
              ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-            fail(where, "indices must be unsigned byte, short or int SCALAR");
+            fail(where, what + " must be unsigned byte, short or int " + typeName(type));
+        const std::size_t size = componentBytes(ct);
         std::vector<std::uint32_t> out;
         forEachElement(a, where, [&](const unsigned char* p) {
-            std::uint32_t v = 0;
-            if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) v = *p;
-            if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
-                std::uint16_t s;
-                std::memcpy(&s, p, 2);
-                v = s;
+            for (std::size_t c = 0; c < components(type); ++c) {
+                std::uint32_t v = 0;
+                std::memcpy(&v, p + c * size, size);  // little-endian, as glTF stores it
+                out.push_back(v);
             }
-            if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) std::memcpy(&v, p, 4);
-            if (v >= vertex_count)
-                fail(where, "index " + std::to_string(v) + " is out of range: the primitive has " +
-                                std::to_string(vertex_count) + " vertices");
-            out.push_back(v);
         });
+        return out;
+    }
+
+    std::vector<std::uint32_t> indices(int index, std::size_t vertex_count) const {
+        std::vector<std::uint32_t> out = unsignedInts(index, TINYGLTF_TYPE_SCALAR, "indices");
+        for (const std::uint32_t v : out)
+            if (v >= vertex_count)
+                fail(pointer("accessors", static_cast<std::size_t>(index)),
+                     "index " + std::to_string(v) + " is out of range: the primitive has " +
+                         std::to_string(vertex_count) + " vertices");
         return out;
     }
 
@@ -109,6 +117,7 @@ private:
             case TINYGLTF_TYPE_VEC2: return 2;
             case TINYGLTF_TYPE_VEC3: return 3;
             case TINYGLTF_TYPE_VEC4: return 4;
+            case TINYGLTF_TYPE_MAT4: return 16;
             default: return 0;
         }
     }
@@ -118,6 +127,7 @@ private:
             case TINYGLTF_TYPE_SCALAR: return "SCALAR";
             case TINYGLTF_TYPE_VEC3: return "VEC3";
             case TINYGLTF_TYPE_VEC4: return "VEC4";
+            case TINYGLTF_TYPE_MAT4: return "MAT4";
             default: return "?";
         }
     }
@@ -273,6 +283,13 @@ private:
             }
             if (n.scale.size() == 3) a.rest.scale = {n.scale[0], n.scale[1], n.scale[2]};
         }
+        for (std::size_t i = 0; i < model_.nodes.size(); ++i)
+            for (const int child : model_.nodes[i].children) {
+                if (child < 0 || static_cast<std::size_t>(child) >= nodes_.size())
+                    reader_.fail(pointer("nodes", i) + "/children", "node " + std::to_string(child) + " does not exist");
+                if (!parents_.emplace(static_cast<std::size_t>(child), i).second)
+                    reader_.fail(pointer("nodes", static_cast<std::size_t>(child)), "the node has two parents");
+            }
     }
 
     // What a channel's output holds: `width` numbers per key, as accessor `type`.
@@ -443,7 +460,42 @@ private:
 
     void addMeshInstance(const std::vector<std::size_t>& chain);
     void buildObject(const std::vector<std::size_t>& chain, std::size_t prim, PrimitiveGeometry g);
-    void followMorph(Object& object, const PrimitiveGeometry& g, const Track& weights, const std::string& where);
+    // Positions over time as deformation keys: at every key time of `tracks` (with STEP holds), bisected
+    // unless `exact`; only inside the rendered span when `span`.
+    struct DeformationSource {
+        std::function<std::vector<glm::dvec3>(double)> at;
+        std::vector<const Track*> tracks;
+        bool exact = true;
+        bool span = false;
+    };
+    void followDeformation(Object& object, const DeformationSource& source, const std::string& where);
+
+    static std::vector<glm::dvec3> morphed(const PrimitiveGeometry& g, const Track& weights, double t) {
+        std::vector<double> w(weights.width);
+        weights.eval(t, w.data());
+        std::vector<glm::dvec3> out = g.positions;
+        for (std::size_t i = 0; i < w.size() && i < g.targets.size(); ++i)
+            for (std::size_t v = 0; v < out.size(); ++v) out[v] += w[i] * g.targets[i][v];
+        return out;
+    }
+
+    int materialOf(const tinygltf::Primitive& p, int mesh, std::size_t prim) const {
+        if (p.material >= static_cast<int>(model_.materials.size()))
+            reader_.fail(pointer("meshes", static_cast<std::size_t>(mesh)) + "/primitives/" + std::to_string(prim),
+                         "material " + std::to_string(p.material) + " does not exist");
+        return p.material < 0 ? static_cast<int>(default_material_) : p.material;
+    }
+    void clipToSpan(KeyPlan& plan) const;
+
+    // A skin whose joints do not move: one key, the bind pose, at time 0.
+    static Track stillTrack() {
+        Track t;
+        t.times = {0.0};
+        t.values = {0.0, 0.0, 0.0};
+        return t;
+    }
+    DeformationSource skinSource(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
+    std::vector<const AnimatedNode*> chainTo(std::size_t node) const;
     void checkJumps(const KeyPlan& plan, const std::string& where) const;
     void pickCamera();
 
@@ -455,6 +507,7 @@ private:
     std::vector<AnimatedNode> nodes_;
     std::deque<Track> tracks_;
     std::map<std::size_t, const Track*> weight_tracks_;
+    std::map<std::size_t, std::size_t> parents_;
     std::set<std::pair<std::size_t, std::string>> targeted_;
     std::set<std::size_t> visited_;
     std::set<std::string> names_;
@@ -468,7 +521,8 @@ void SceneBuilder::addMeshInstance(const std::vector<std::size_t>& chain) {
     const tinygltf::Node& n = model_.nodes[node];
     if (static_cast<std::size_t>(n.mesh) >= model_.meshes.size())
         reader_.fail(pointer("nodes", node), "mesh " + std::to_string(n.mesh) + " does not exist");
-    if (n.skin >= 0) reader_.fail(pointer("nodes", node), "skinned meshes are not supported yet");
+    if (n.skin >= 0 && static_cast<std::size_t>(n.skin) >= model_.skins.size())
+        reader_.fail(pointer("nodes", node), "skin " + std::to_string(n.skin) + " does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(n.mesh)];
     const std::string mesh_where = pointer("meshes", static_cast<std::size_t>(n.mesh));
     for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
@@ -480,7 +534,7 @@ void SceneBuilder::addMeshInstance(const std::vector<std::size_t>& chain) {
             continue;
         }
         if (mode > TINYGLTF_MODE_TRIANGLE_FAN) reader_.fail(where, "unknown mode " + std::to_string(mode));
-        if (p.attributes.count("JOINTS_0")) reader_.fail(where, "skinned meshes are not supported yet");
+        if (p.attributes.count("JOINTS_0") && n.skin < 0) reader_.fail(where, "JOINTS_0 without a skin on the node");
         if (p.targets.size() != mesh.primitives[0].targets.size())
             reader_.fail(where, "primitives of one mesh must have the same number of morph targets");
         PrimitiveGeometry g = readPrimitive(p, where);
@@ -516,6 +570,18 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     const tinygltf::Node& n = model_.nodes[node];
     const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(n.mesh)];
     const std::string where = pointer("nodes", node);
+    if (n.skin >= 0) {
+        // A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints.
+        Object object;
+        object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
+        object.loc = request_.ref;
+        object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
+        object.mesh.triangles = g.triangles;
+        object.mesh.positions = g.positions;
+        followDeformation(object, skinSource(node, mesh.primitives[prim], g), where + "/skin");
+        out_.objects.push_back(std::move(object));
+        return;
+    }
     const SplitChain s = split(chain);
     // The static tail is folded into the mesh, the offsets by its linear part only.
     for (glm::dvec3& p : g.positions) p = glm::dvec3(s.tail * glm::dvec4(p, 1.0));
@@ -525,18 +591,20 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     Object object;
     object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
     object.loc = request_.ref;
-    const int material = mesh.primitives[prim].material;
-    if (material >= static_cast<int>(model_.materials.size()))
-        reader_.fail(pointer("meshes", static_cast<std::size_t>(n.mesh)) + "/primitives/" + std::to_string(prim),
-                     "material " + std::to_string(material) + " does not exist");
-    object.material = material < 0 ? static_cast<int>(default_material_) : material;
+    object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
     object.mesh.triangles = g.triangles;
     object.mesh.positions = g.positions;
     const std::vector<double> rest = restWeights(node, g.targets.size());
     for (std::size_t t = 0; t < g.targets.size(); ++t)
         for (std::size_t v = 0; v < g.positions.size(); ++v) object.mesh.positions[v] += rest[t] * g.targets[t][v];
     const auto weights = weight_tracks_.find(node);
-    if (weights != weight_tracks_.end()) followMorph(object, g, *weights->second, where);
+    if (weights != weight_tracks_.end()) {
+        DeformationSource morph;
+        morph.at = [&](double t) { return morphed(g, *weights->second, t); };
+        morph.tracks = {weights->second};
+        morph.exact = weights->second->interpolation != Interpolation::CubicSpline;
+        followDeformation(object, morph, where + "/weights");
+    }
 
     if (s.animated) {
         glm::dvec3 lo(std::numeric_limits<double>::max());
@@ -568,18 +636,11 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     out_.objects.push_back(std::move(object));
 }
 
-void SceneBuilder::followMorph(Object& object, const PrimitiveGeometry& g, const Track& weights, const std::string& where) {
-    const auto at = [&](double t) {
-        std::vector<double> w(weights.width);
-        weights.eval(t, w.data());
-        DeformationKey key{t, g.positions};
-        for (std::size_t i = 0; i < w.size(); ++i)
-            for (std::size_t v = 0; v < key.positions.size(); ++v) key.positions[v] += w[i] * g.targets[i][v];
-        return key;
-    };
-    // The weight keys, with STEP holds; exact for LINEAR and STEP (positions are linear in the weights).
-    const KeyPlan plan = planTimes({&weights});
-    checkJumps(plan, where + "/weights");
+void SceneBuilder::followDeformation(Object& object, const DeformationSource& source, const std::string& where) {
+    const auto at = [&](double t) { return DeformationKey{t, source.at(t)}; };
+    KeyPlan plan = planTimes(source.tracks);
+    checkJumps(plan, where);
+    if (source.span) clipToSpan(plan);
     std::vector<DeformationKey> keys{at(plan.times.front())};
     double size = 0.0;
     for (const glm::dvec3& p : keys[0].positions) size = std::max(size, glm::length(p - keys[0].positions[0]));
@@ -594,22 +655,117 @@ void SceneBuilder::followMorph(Object& object, const PrimitiveGeometry& g, const
     std::size_t i = 1;
     while (i < plan.times.size()) {
         DeformationKey next = at(plan.times[i]);
-        // CUBICSPLINE weights: halve the interval until the quarter points lie within the tolerance.
-        while (weights.interpolation == Interpolation::CubicSpline && !plan.jump_after[i - 1] &&
-               keys.size() < request_.max_deformation_keys &&
+        // Not linear between the key times: halve the interval until the quarter points lie within the
+        // tolerance.
+        while (!source.exact && !plan.jump_after[i - 1] && keys.size() < request_.max_deformation_keys &&
                std::max({deviation(keys.back(), next, 0.25), deviation(keys.back(), next, 0.5),
                          deviation(keys.back(), next, 0.75)}) > tolerance)
             next = at(0.5 * (keys.back().time + next.time));
         if (next.time == plan.times[i]) ++i;
         keys.push_back(std::move(next));
-        if (keys.size() > request_.max_deformation_keys || keys.size() * g.positions.size() > kMaxMorphPositions)
-            reader_.fail(where + "/weights", "the morph needs more than " +
-                                                 std::to_string(request_.max_deformation_keys) +
-                                                 " deformation keys or more than " + std::to_string(kMaxMorphPositions) +
-                                                 " key positions");
+        if (keys.size() > request_.max_deformation_keys || keys.size() * object.mesh.positions.size() > kMaxMorphPositions)
+            reader_.fail(where, "the deformation needs more than " + std::to_string(request_.max_deformation_keys) +
+                                    " keys or more than " + std::to_string(kMaxMorphPositions) + " key positions");
     }
     object.mesh.positions = keys.front().positions;
     object.deformation = std::move(keys);
+}
+
+// Key times inside the rendered span only, with its ends: skins need keys at every joint's key time,
+// and a long animation would exceed Embree's 129 time steps for nothing outside the frames rendered.
+void SceneBuilder::clipToSpan(KeyPlan& plan) const {
+    const double lo = request_.frames.first + request_.shutter.open;
+    const double hi = request_.frames.last + request_.shutter.close;
+    KeyPlan clipped;
+    clipped.times.push_back(lo);
+    clipped.jump_after.push_back(false);
+    for (std::size_t i = 0; i < plan.times.size(); ++i)
+        if (plan.times[i] > lo && plan.times[i] < hi) {
+            clipped.jump_after.back() = clipped.jump_after.back() || (i > 0 && plan.jump_after[i - 1]);
+            clipped.times.push_back(plan.times[i]);
+            clipped.jump_after.push_back(plan.jump_after[i]);
+        }
+    if (hi > lo) {
+        clipped.times.push_back(hi);
+        clipped.jump_after.push_back(false);
+    }
+    plan = std::move(clipped);
+}
+
+std::vector<const AnimatedNode*> SceneBuilder::chainTo(std::size_t node) const {
+    std::vector<const AnimatedNode*> chain{&nodes_[node]};
+    for (auto p = parents_.find(node); p != parents_.end(); p = parents_.find(p->second)) {
+        if (chain.size() >= kMaxHierarchyDepth)
+            reader_.fail(pointer("nodes", node), "the hierarchy is deeper than " + std::to_string(kMaxHierarchyDepth) + " levels");
+        chain.push_back(&nodes_[p->second]);
+    }
+    std::reverse(chain.begin(), chain.end());
+    return chain;
+}
+
+// Linear blend skinning (glTF 2.0, 3.7.3): each vertex moved by the weighted sum of its joints' world
+// matrices times their inverse bind matrices, after the morph targets.
+SceneBuilder::DeformationSource SceneBuilder::skinSource(std::size_t node, const tinygltf::Primitive& p,
+                                                         const PrimitiveGeometry& g) {
+    const auto skin_index = static_cast<std::size_t>(model_.nodes[node].skin);
+    const tinygltf::Skin& skin = model_.skins[skin_index];
+    const std::string where = pointer("skins", skin_index);
+    if (skin.joints.empty()) reader_.fail(where, "a skin needs joints");
+    if (p.attributes.count("JOINTS_1") || p.attributes.count("WEIGHTS_1"))
+        reader_.fail(where, "at most 4 joints per vertex (JOINTS_0, WEIGHTS_0) are supported");
+    const auto joints_at = p.attributes.find("JOINTS_0");
+    const auto weights_at = p.attributes.find("WEIGHTS_0");
+    if (joints_at == p.attributes.end() || weights_at == p.attributes.end())
+        reader_.fail(pointer("nodes", node), "a skinned mesh needs JOINTS_0 and WEIGHTS_0");
+    auto joints = std::make_shared<std::vector<std::uint32_t>>(reader_.unsignedInts(joints_at->second, TINYGLTF_TYPE_VEC4, "JOINTS_0"));
+    auto weights = std::make_shared<std::vector<double>>(reader_.floats(weights_at->second, TINYGLTF_TYPE_VEC4, "WEIGHTS_0"));
+    if (joints->size() != 4 * g.positions.size() || weights->size() != 4 * g.positions.size())
+        reader_.fail(pointer("nodes", node), "JOINTS_0 and WEIGHTS_0 need one element per vertex");
+    for (const std::uint32_t j : *joints)
+        if (j >= skin.joints.size())
+            reader_.fail(pointer("accessors", static_cast<std::size_t>(joints_at->second)),
+                         "joint " + std::to_string(j) + " is out of range: the skin has " + std::to_string(skin.joints.size()));
+    auto bind = std::make_shared<std::vector<glm::dmat4>>(skin.joints.size(), glm::dmat4(1.0));
+    if (skin.inverseBindMatrices >= 0) {
+        const std::vector<double> m = reader_.floats(skin.inverseBindMatrices, TINYGLTF_TYPE_MAT4, "inverseBindMatrices");
+        if (m.size() != 16 * skin.joints.size()) reader_.fail(where, "inverseBindMatrices needs one matrix per joint");
+        for (std::size_t j = 0; j < bind->size(); ++j)
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) (*bind)[j][c][r] = m[16 * j + static_cast<std::size_t>(4 * c + r)];
+    }
+    DeformationSource source;
+    auto chains = std::make_shared<std::vector<ChainMotion>>();
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+        const int joint = skin.joints[j];
+        if (joint < 0 || static_cast<std::size_t>(joint) >= nodes_.size())
+            reader_.fail(where + "/joints/" + std::to_string(j), "node " + std::to_string(joint) + " does not exist");
+        chains->push_back(ChainMotion{chainTo(static_cast<std::size_t>(joint))});
+        for (const AnimatedNode* a : chains->back().chain)
+            for (const Track* t : {a->translation, a->rotation, a->scale})
+                if (t && std::find(source.tracks.begin(), source.tracks.end(), t) == source.tracks.end())
+                    source.tracks.push_back(t);
+    }
+    const auto morph = weight_tracks_.find(node);
+    const Track* morph_track = morph == weight_tracks_.end() ? nullptr : morph->second;
+    if (morph_track) source.tracks.push_back(morph_track);
+    if (source.tracks.empty()) source.tracks.push_back(&tracks_.emplace_back(stillTrack()));
+    source.exact = false;
+    source.span = true;
+    auto rest = std::make_shared<std::vector<glm::dvec3>>(g.positions);
+    const std::vector<double> rest_weights = restWeights(node, g.targets.size());
+    for (std::size_t t = 0; t < g.targets.size(); ++t)
+        for (std::size_t v = 0; v < rest->size(); ++v) (*rest)[v] += rest_weights[t] * g.targets[t][v];
+    source.at = [=, &g](double t) {
+        const std::vector<glm::dvec3> base = morph_track ? morphed(g, *morph_track, t) : *rest;
+        std::vector<glm::dmat4> m(chains->size());
+        for (std::size_t j = 0; j < m.size(); ++j) m[j] = (*chains)[j].world(t) * (*bind)[j];
+        std::vector<glm::dvec3> out(base.size(), glm::dvec3(0.0));
+        for (std::size_t v = 0; v < base.size(); ++v)
+            for (std::size_t k = 0; k < 4; ++k)
+                out[v] += (*weights)[4 * v + k] * glm::dvec3(m[(*joints)[4 * v + k]] * glm::dvec4(base[v], 1.0));
+        return out;
+    };
+    return source;
 }
 
 void SceneBuilder::pickCamera() {

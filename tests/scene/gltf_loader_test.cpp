@@ -350,6 +350,49 @@ TEST(GltfLoader, MorphWeightsAreExactDeformationKeys) {
     EXPECT_LT(glm::length(evalVertex(o, 3, 6) - glm::dvec3(0, 0, 1.25)), 1e-12);
 }
 
+TEST(GltfLoader, SkinIsSampledIntoDeformationKeysWithinTheStatedBound) {
+    GltfWriter w;
+    // A bar of three rows (y = 0, 1, 2), bound to a hip at the origin and a knee at y = 1 that bends.
+    const int pos = w.addFloats({-0.1f, 0, 0, 0.1f, 0, 0, -0.1f, 1, 0, 0.1f, 1, 0, -0.1f, 2, 0, 0.1f, 2, 0}, "VEC3", 34962);
+    const int idx = w.addIndices({0, 1, 3, 0, 3, 2, 2, 3, 5, 2, 5, 4}, 5123);
+    const int joints = w.addUnsigned({0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0}, 5121, "VEC4");
+    const std::vector<float> weights = {1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0.5f, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0};
+    const int wts = w.addFloats(weights, "VEC4", 34962);
+    const int ibm = w.addFloats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, /**/ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1}, "MAT4");
+    w.doc()["meshes"].push_back({{"primitives", json::array({{{"attributes", {{"POSITION", pos}, {"JOINTS_0", joints}, {"WEIGHTS_0", wts}}},
+                                                              {"indices", idx}}})}});
+    addNode(w, {{"name", "leg"}, {"mesh", 0}, {"skin", 0}});
+    const int hip = addNode(w, {{"name", "hip"}, {"children", {2}}});
+    const int knee = addNode(w, {{"name", "knee"}, {"translation", {0, 1, 0}}});
+    w.doc()["skins"] = json::array({{{"joints", {hip, knee}}, {"inverseBindMatrices", ibm}}});
+    setScene(w, {0, hip});
+    std::vector<float> bend = quat(0, {0, 0, 1});
+    const std::vector<float> bent = quat(90, {0, 0, 1});
+    bend.insert(bend.end(), bent.begin(), bent.end());
+    animate(w, knee, "rotation", "LINEAR", {0, 1}, bend);
+    GltfRequest r = request();
+    r.fps = 1.0;  // 1 s = frame 0's whole shutter
+    const Object o = loadValid(w, "skin", r).objects.at(0);
+    EXPECT_TRUE(o.transform.empty());
+    ASSERT_GE(o.deformation.size(), 2u);
+    // Hand value at the end: the tip (0.1, 2) turned 90 degrees about the knee (0, 1): (-1, 1.1).
+    EXPECT_LT(glm::length(evalVertex(o, 5, 1.0) - glm::dvec3(-1, 1.1, 0)), 1e-6);
+    const std::vector<glm::dvec3> rest = {{-0.1, 0, 0}, {0.1, 0, 0}, {-0.1, 1, 0}, {0.1, 1, 0}, {-0.1, 2, 0}, {0.1, 2, 0}};
+    double worst = 0.0;
+    for (const double t : seededTimes(0, 1, 4000, 13)) {
+        const glm::dquat q = glm::slerp(toQuat(bend), toQuat(bend, 4), t);
+        const glm::dmat4 knee_m = glm::translate(glm::dmat4(1.0), glm::dvec3(0, 1, 0)) * glm::mat4_cast(q) *
+                                  glm::translate(glm::dmat4(1.0), glm::dvec3(0, -1, 0));
+        for (std::uint32_t v = 0; v < rest.size(); ++v) {
+            const glm::dvec3 truth = double(weights[4 * v]) * rest[v] + double(weights[4 * v + 1]) * apply(knee_m, rest[v]);
+            worst = std::max(worst, glm::length(evalVertex(o, v, t) - truth));
+        }
+    }
+    // The bound: 1e-4 of the object's size (its largest distance from vertex 0: |(0.2, 2)| at rest).
+    EXPECT_LT(worst, 1e-4 * std::sqrt(4.04));
+    std::cout << "skin: " << o.deformation.size() << " deformation keys, measured deviation " << worst << "\n";
+}
+
 TEST(GltfLoader, GlbAndBinBufferLoadLikeTheDataUri) {
     GltfWriter w;
     const int mesh = addTetraMesh(w);
@@ -411,8 +454,15 @@ TEST(GltfLoader, BadFilesAreRefusedWithTheFileAndTheJsonPointer) {
         {"past_view", [](GltfWriter& w) { w.doc()["accessors"][0]["count"] = 40; }, "/accessors/0: count, byteOffset and stride reach beyond its bufferView"},
         {"no_view", [](GltfWriter& w) { w.doc()["accessors"][0]["bufferView"] = 99; }, "/accessors/0: bufferView 99 does not exist"},
         {"bad_node", [](GltfWriter& w) { w.doc()["scenes"][0]["nodes"] = {4}; }, "/scenes/0/nodes: node 4 does not exist"},
-        {"skin", [](GltfWriter& w) { w.doc()["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = 0; },
-         "/meshes/0/primitives/0: skinned meshes are not supported yet"},
+        {"joints_no_skin", [](GltfWriter& w) { w.doc()["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = 0; },
+         "/meshes/0/primitives/0: JOINTS_0 without a skin on the node"},
+        {"skin_range", [](GltfWriter& w) {
+             w.doc()["nodes"][0]["skin"] = 0;
+             w.doc()["skins"] = json::array({{{"joints", {0}}}});
+             w.doc()["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = w.addUnsigned({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0}, 5121, "VEC4");
+             w.doc()["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = w.addFloats(std::vector<float>(16, 0.25f), "VEC4");
+         },
+         "/accessors/4: joint 3 is out of range: the skin has 1"},
         {"deep", [](GltfWriter& w) {
              for (int i = 0; i < 1100; ++i) w.doc()["nodes"].push_back({{"children", {i + 1 < 1100 ? 2 + i : 0}}});
              w.doc()["scenes"][0]["nodes"] = {1};

@@ -32,7 +32,7 @@ void appendU32(std::string& s, std::uint32_t v) {
 }
 
 std::size_t componentCount(const std::string& type) {
-    return type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "VEC4" ? 4 : 0;
+    return type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "VEC4" ? 4 : type == "MAT4" ? 16 : 0;
 }
 
 }  // namespace
@@ -75,6 +75,16 @@ int GltfWriter::addIndices(const std::vector<std::uint32_t>& values, int compone
     const int view = addView(bytes, 34963);
     doc_["accessors"].push_back(
         {{"bufferView", view}, {"componentType", component_type}, {"count", values.size()}, {"type", "SCALAR"}});
+    return static_cast<int>(doc_["accessors"].size()) - 1;
+}
+
+int GltfWriter::addUnsigned(const std::vector<std::uint32_t>& values, int component_type, const std::string& type) {
+    const std::size_t size = component_type == 5121 ? 1 : component_type == 5123 ? 2 : 4;
+    std::vector<std::uint8_t> bytes(values.size() * size);
+    for (std::size_t i = 0; i < values.size(); ++i) std::memcpy(&bytes[i * size], &values[i], size);  // little-endian
+    const int view = addView(bytes, 34962);
+    doc_["accessors"].push_back({{"bufferView", view}, {"componentType", component_type},
+                                 {"count", values.size() / componentCount(type)}, {"type", type}});
     return static_cast<int>(doc_["accessors"].size()) - 1;
 }
 

@@ -22,6 +22,8 @@ public:
     int addFloats(const std::vector<float>& values, const std::string& type, int target = 0);
     // Unsigned indices with a component type of 5121, 5123 or 5125.
     int addIndices(const std::vector<std::uint32_t>& values, int component_type);
+    // Unsigned integers of `type` (JOINTS_0: "VEC4", 5121 or 5123) as a vertex attribute.
+    int addUnsigned(const std::vector<std::uint32_t>& values, int component_type, const std::string& type);
 
     std::string gltfText() const;  // buffer as a data URI
     std::string glb() const;
