@@ -33,28 +33,44 @@ void animate(testing::GltfWriter& w, int node, const std::string& path, const st
          {"channels", json::array({{{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}}})}});
 }
 
-// A flag whose corner a morph target pulls out during the shutter (exact deformation keys) and a wheel
-// spinning on a car that drives and turns (resampled transform keys), over 1 s = 1 frame at fps 1.
+// A flag whose corner a morph target pulls out during the shutter (exact deformation keys), a wheel
+// spinning on a car that drives and turns (resampled transform keys) and a skinned leg bending at the
+// knee (sampled deformation keys), over 1 s = 1 frame at fps 1.
 testing::GltfWriter movingScene() {
     testing::GltfWriter w;
     w.doc()["materials"] = json::array(
         {{{"doubleSided", true}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.2, 0.2, 1}}}}},
-         {{"doubleSided", true}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.9, 0.2, 1}}}}}});
+         {{"doubleSided", true}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.9, 0.2, 1}}}}},
+         {{"doubleSided", true}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.3, 0.9, 1}}}}}});
     const int quad = w.addFloats({-1.5, -1, 0, -0.5, -1, 0, -0.5, 0.5, 0, -1.5, 0.5, 0}, "VEC3", 34962);
     const int pull = w.addFloats({0, 0, 0, 0, 0, 0, 0.8f, 0.3f, 0, 0, 0, 0}, "VEC3", 34962);
     const int quad_idx = w.addIndices({0, 1, 2, 0, 2, 3}, 5123);
     const int tetra = w.addFloats({0, 0, 0, 0.6f, 0, 0, 0, 0.6f, 0, 0, 0, 0.6f}, "VEC3", 34962);
     const int tetra_idx = w.addIndices({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}, 5123);
+    // A leg from (2.5, -1.5) up to (2.5, 0.5), clear of the car's path, hip at its foot, knee halfway;
+    // components of zero weight name joint 0.
+    const int leg = w.addFloats({2.35f, -1.5f, 0, 2.65f, -1.5f, 0, 2.35f, -0.5f, 0, 2.65f, -0.5f, 0, 2.35f, 0.5f, 0, 2.65f, 0.5f, 0},
+                                "VEC3", 34962);
+    const int leg_idx = w.addIndices({0, 1, 3, 0, 3, 2, 2, 3, 5, 2, 5, 4}, 5123);
+    const int joints = w.addUnsigned({0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, 5121, "VEC4");
+    const int weights = w.addFloats({1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4", 34962);
+    const int ibm = w.addFloats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -2.5f, 1.5f, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -2.5f, 0.5f, 0, 1}, "MAT4");
     w.doc()["meshes"] = json::array(
         {{{"primitives", json::array({{{"attributes", {{"POSITION", quad}}}, {"indices", quad_idx}, {"material", 0},
                                        {"targets", json::array({{{"POSITION", pull}}})}}})},
           {"weights", {0}}},
-         {{"primitives", json::array({{{"attributes", {{"POSITION", tetra}}}, {"indices", tetra_idx}, {"material", 1}}})}}});
+         {{"primitives", json::array({{{"attributes", {{"POSITION", tetra}}}, {"indices", tetra_idx}, {"material", 1}}})}},
+         {{"primitives", json::array({{{"attributes", {{"POSITION", leg}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}}},
+                                       {"indices", leg_idx}, {"material", 2}}})}}});
     w.doc()["nodes"] = json::array({{{"name", "flag"}, {"mesh", 0}},
                                     {{"name", "car"}, {"children", {2}}},
-                                    {{"name", "wheel"}, {"mesh", 1}, {"translation", {0.3, 0.2, 0}}}});
+                                    {{"name", "wheel"}, {"mesh", 1}, {"translation", {0.3, 0.2, 0}}},
+                                    {{"name", "leg"}, {"mesh", 2}, {"skin", 0}},
+                                    {{"name", "hip"}, {"translation", {2.5, -1.5, 0}}, {"children", {5}}},
+                                    {{"name", "knee"}, {"translation", {0, 1, 0}}}});
+    w.doc()["skins"] = json::array({{{"joints", {4, 5}}, {"inverseBindMatrices", ibm}}});
     w.doc()["scene"] = 0;
-    w.doc()["scenes"] = json::array({{{"nodes", {0, 1}}}});
+    w.doc()["scenes"] = json::array({{{"nodes", {0, 1, 3, 4}}}});
     animate(w, 0, "weights", {0, 1});
     animate(w, 1, "translation", {0.3f, -0.5f, 0, 1.3f, -0.2f, 0});
     std::vector<float> turn = zQuat(0);
@@ -63,6 +79,9 @@ testing::GltfWriter movingScene() {
     std::vector<float> spin = zQuat(0);
     for (const float v : zQuat(-120)) spin.push_back(v);
     animate(w, 2, "rotation", spin);
+    std::vector<float> bend = zQuat(0);
+    for (const float v : zQuat(-70)) bend.push_back(v);
+    animate(w, 5, "rotation", bend);
     return w;
 }
 
@@ -106,16 +125,17 @@ double meanSquaredDifference(const RenderResult& a, const RenderResult& b, const
 // independent seeds estimate the variance V of their average; an exact clipped render differs from
 // that average by V in the mean, so the ratio stays near 1 (< 1.5 allows ~5 standard errors), while a
 // wrong morph or a wheel off its path is a bias over whole edges that the ratio does not survive.
-TEST(GltfRender, MorphAndResampledMotionAgreeWithTheStochasticReference) {
+TEST(GltfRender, MorphSkinAndResampledMotionAgreeWithTheStochasticReference) {
     const auto dir = testing::freshTempDir("clipblur_gltf_vs_stochastic");
     movingScene().writeGltf(dir / "moving.gltf");
     movingScene().writeGltf(testing::validatedAssetDir() / "moving_vs_stochastic.gltf");
     std::ofstream(dir / "job.yaml") << kJob;
     const auto load = [&](const std::vector<std::string>& overrides) { return loadJob(dir / "job.yaml", overrides); };
     const RenderJob job = load({});
-    ASSERT_EQ(job.scene.objects.size(), 3u);
+    ASSERT_EQ(job.scene.objects.size(), 4u);
     EXPECT_EQ(job.scene.objects[1].deformation.size(), 2u);
     EXPECT_GT(job.scene.objects[2].transform.size(), 2u);  // resampled
+    EXPECT_GT(job.scene.objects[3].deformation.size(), 2u);  // the skin, sampled
     const RenderResult clipped = renderFrame(load({"render.subframes=64"}), 0);
     const RenderResult s1 = renderFrame(load({"render.method=stochastic", "render.samples=400", "render.seed=1"}), 0);
     const RenderResult s2 = renderFrame(load({"render.method=stochastic", "render.samples=400", "render.seed=2"}), 0);
@@ -123,6 +143,7 @@ TEST(GltfRender, MorphAndResampledMotionAgreeWithTheStochasticReference) {
     const double ratio = meanSquaredDifference(clipped, s1, &s2) / variance;
     RecordProperty("ratio", std::to_string(ratio));
     RecordProperty("transform_keys", std::to_string(job.scene.objects[2].transform.size()));
+    RecordProperty("skin_keys", std::to_string(job.scene.objects[3].deformation.size()));
     EXPECT_LT(ratio, 1.5) << "variance " << variance;
     // The motion is visible: a still render differs from the moving one far beyond the noise.
     const RenderResult still = renderFrame(load({"shutter.close=0"}), 0);
