@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -107,6 +108,16 @@ TEST(GltfJob, TheJobsCameraWinsAndRenderCameraBesideItIsRefused) {
 
     const RenderJob picked = loadJob(writeJob("picked", std::string(kJobHead) + "render: {camera: cam}\n"));
     EXPECT_LT(glm::length(picked.scene.camera.keys.at(0).position - glm::dvec3(0.2, 0.3, 10)), 1e-6);
+
+    // A square glTF camera on a 16:9 film: the film wins, yfov is kept, and a warning says so.
+    const auto square = writeJob("square", kJobHead);
+    GltfWriter w = shot(true);
+    w.doc()["cameras"][0]["perspective"]["aspectRatio"] = 1.0;
+    w.writeGlb(square.parent_path() / "shot.glb");
+    const RenderJob sq = loadJob(square);
+    EXPECT_NEAR(sq.scene.camera.vfov_degrees, 0.7 * 180 / M_PI, 1e-5);
+    EXPECT_TRUE(std::any_of(sq.warnings.begin(), sq.warnings.end(),
+                            [](const std::string& m) { return m.find("aspectRatio 1.000000 differs") != std::string::npos; }));
 }
 
 TEST(GltfJob, CliExitCodesAndARender) {

@@ -1,5 +1,7 @@
 #include "scene/gltf_loader.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -415,6 +417,35 @@ TEST(GltfLoader, GlbAndBinBufferLoadLikeTheDataUri) {
     // Two nodes of one name: the second gets "#2".
     EXPECT_EQ(uri.objects[0].name, "a");
     EXPECT_EQ(uri.objects[1].name, "a#2");
+}
+
+TEST(GltfLoader, PrimitiveModesAndIgnoredMaterialFeaturesAreReported) {
+    GltfWriter w;
+    std::vector<float> p;
+    for (const glm::dvec3& v : kTetra) p.insert(p.end(), {float(v.x), float(v.y), float(v.z)});
+    const int pos = w.addFloats(p, "VEC3", 34962);
+    // Not indexed: vertices 0 1 2 as one triangle needs exactly three; a strip over all four gives two.
+    const int tri = w.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 34962);
+    const int line_idx = w.addIndices({0, 1}, 5123);
+    w.doc()["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    w.doc()["materials"] = json::array({{{"emissiveFactor", {1, 1, 1}},
+                                         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 2}}}}}}});
+    w.doc()["meshes"].push_back({{"primitives", json::array({{{"attributes", {{"POSITION", tri}}}, {"material", 0}},
+                                                             {{"attributes", {{"POSITION", pos}}}, {"mode", 5}},
+                                                             {{"attributes", {{"POSITION", pos}}}, {"indices", line_idx}, {"mode", 1}}})}});
+    setScene(w, {addNode(w, {{"name", "modes"}, {"mesh", 0}})});
+    const GltfScene s = loadValid(w, "modes");
+    ASSERT_EQ(s.objects.size(), 2u);
+    EXPECT_EQ(s.objects[0].name, "modes/0");
+    EXPECT_EQ(s.objects[0].mesh.triangles, (std::vector<std::array<std::uint32_t, 3>>{{0, 1, 2}}));
+    EXPECT_EQ(s.objects[1].name, "modes/1");
+    // TRIANGLE_STRIP: every other triangle flipped so that all keep the first one's winding.
+    EXPECT_EQ(s.objects[1].mesh.triangles, (std::vector<std::array<std::uint32_t, 3>>{{0, 1, 2}, {2, 1, 3}}));
+    const auto has = [&](const std::string& what) {
+        return std::any_of(s.warnings.begin(), s.warnings.end(), [&](const std::string& m) { return m.find(what) != std::string::npos; });
+    };
+    EXPECT_TRUE(has("points and lines are skipped (/meshes/0/primitives/2"));
+    EXPECT_TRUE(has("emission is ignored"));
 }
 
 namespace {
