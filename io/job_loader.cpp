@@ -32,8 +32,9 @@ Mesh buildMesh(const MeshSource& src, const std::filesystem::path& base, std::ui
 }
 
 // Appends the glTF scene's objects and materials; its camera unless the job has its own.
-void addSceneFile(const config::JobDescription& desc, const std::filesystem::path& base, std::uint64_t triangles,
-                  RenderJob& job) {
+// Returns the external buffer files the glTF file named.
+std::vector<std::filesystem::path> addSceneFile(const config::JobDescription& desc, const std::filesystem::path& base,
+                                                std::uint64_t triangles, RenderJob& job) {
     const config::SceneFileSource& src = desc.scene_file;
     GltfRequest request;
     request.ref = src.loc;
@@ -65,6 +66,7 @@ void addSceneFile(const config::JobDescription& desc, const std::filesystem::pat
                                     ": its yfov is kept, so the film shows more or less width");
     }
     job.warnings.insert(job.warnings.end(), gltf.warnings.begin(), gltf.warnings.end());
+    return gltf.buffer_files;
 }
 
 RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
@@ -104,8 +106,11 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
     }
     if (!desc.scene_file.path.empty()) {
         const std::filesystem::path scene_path = base / desc.scene_file.path;
-        addSceneFile(desc, base, total, job);
-        if (read_files) read_files->push_back(scene_path);
+        const std::vector<std::filesystem::path> buffers = addSceneFile(desc, base, total, job);
+        if (read_files) {
+            read_files->push_back(scene_path);
+            read_files->insert(read_files->end(), buffers.begin(), buffers.end());
+        }
         // The glTF file's bytes are part of what the job renders: edits to it must change the hash.
         std::ifstream in(scene_path, std::ios::binary);
         job.config_hash = config::fnv1a64Hex(job.config_hash + std::string(std::istreambuf_iterator<char>(in), {}));

@@ -857,7 +857,10 @@ GltfScene parseGltfScene(const std::string& bytes, const std::string& name, cons
                                          (ref.empty() ? "" : " (glTF file of " + ref + ")"),
                     FileLoc{name, 0, 0});
     }
-    return buildScene(model, name, request);
+    GltfScene scene = buildScene(model, name, request);
+    for (const tinygltf::Buffer& b : model.buffers)
+        if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) scene.buffer_files.push_back(base / b.uri);
+    return scene;
 }
 
 GltfScene loadGltfScene(const std::filesystem::path& file, const GltfRequest& request) {

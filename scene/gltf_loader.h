@@ -34,6 +34,7 @@ struct GltfScene {
     std::optional<Camera> camera;
     double camera_aspect = 0.0;          // the camera's aspectRatio, 0 when not given
     std::vector<std::string> warnings;   // features read but ignored
+    std::vector<std::filesystem::path> buffer_files;  // external buffers read beside the file
 };
 
 // Loads a .gltf or .glb file (told apart by content) with its buffers, relative to its folder. Every

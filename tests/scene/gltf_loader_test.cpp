@@ -414,6 +414,9 @@ TEST(GltfLoader, GlbAndBinBufferLoadLikeTheDataUri) {
         ASSERT_EQ(s.objects.size(), 2u) << f;
         EXPECT_EQ(s.objects[0].mesh.positions, uri.objects[0].mesh.positions) << f;
     }
+    EXPECT_EQ(loadGltfScene(dir / "names_bin.gltf", request()).buffer_files,
+              std::vector<std::filesystem::path>{dir / "names_bin.bin"});
+    EXPECT_TRUE(uri.buffer_files.empty());
     // Two nodes of one name: the second gets "#2".
     EXPECT_EQ(uri.objects[0].name, "a");
     EXPECT_EQ(uri.objects[1].name, "a#2");
