@@ -329,6 +329,34 @@ TEST(GltfLoader, CameraAnimatedLikeSpinPanGivesTheYamlCameraPoses) {
     }
 }
 
+TEST(GltfLoader, CameraUnderAnAnimatedParentIsResampledWithinItsBound) {
+    GltfWriter w;
+    const int mesh = addTetraMesh(w);
+    w.doc()["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}}});
+    const int cam = addNode(w, {{"name", "boom_cam"}, {"camera", 0}, {"translation", {0, 0, 5}}});
+    const int boom = addNode(w, {{"name", "boom"}, {"children", {cam}}});
+    setScene(w, {boom, addNode(w, {{"mesh", mesh}})});
+    std::vector<float> swing = quat(0, {0, 1, 0});
+    const std::vector<float> swung = quat(90, {0, 1, 0});
+    swing.insert(swing.end(), swung.begin(), swung.end());
+    animate(w, boom, "rotation", "LINEAR", {0, 1}, swing);
+    const GltfScene s = loadValid(w, "boom_camera");
+    ASSERT_TRUE(s.camera.has_value());
+    EXPECT_GT(s.camera->keys.size(), 2u);  // a static offset under a turning node: not linear, resampled
+    double worst = 0.0;
+    for (const double t : seededTimes(0, 24, 4000, 17)) {
+        const glm::dmat4 m = trs({}, glm::slerp(toQuat(swing), toQuat(swing, 4), t / 24), glm::dvec3(1)) *
+                             trs({0, 0, 5}, glm::dquat(1, 0, 0, 0), glm::dvec3(1));
+        const CameraFrame f = evalCamera(*s.camera, t);
+        worst = std::max({worst, glm::length(f.position - glm::dvec3(m[3])),
+                          glm::length(f.e3 + glm::normalize(glm::dvec3(m[2]))),
+                          glm::length(f.e1 - glm::normalize(glm::dvec3(m[1])))});
+    }
+    // The camera's bound: 1e-5 in position and direction.
+    EXPECT_LT(worst, 1e-5);
+    std::cout << "boom camera: " << s.camera->keys.size() << " keys, measured deviation " << worst << "\n";
+}
+
 TEST(GltfLoader, MorphWeightsAreExactDeformationKeys) {
     GltfWriter w;
     std::vector<float> p;
