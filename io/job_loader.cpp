@@ -1,9 +1,14 @@
 #include "io/job_loader.h"
 
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
 #include "io/config/config_node.h"
 #include "io/config/document_reader.h"
 #include "io/config/job_schema.h"
 #include "io/config/overrides.h"
+#include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/primitives.h"
 #include "scene/scene_validation.h"
@@ -24,6 +29,44 @@ Mesh buildMesh(const MeshSource& src, const std::filesystem::path& base, std::ui
         case MeshSource::Kind::Obj: return loadObjMesh(base / src.obj_path, src.loc, budget, &faces);
     }
     return {};
+}
+
+// Appends the glTF scene's objects and materials; its camera unless the job has its own.
+// Returns the external buffer files the glTF file named.
+std::vector<std::filesystem::path> addSceneFile(const config::JobDescription& desc, const std::filesystem::path& base,
+                                                std::uint64_t triangles, RenderJob& job) {
+    const config::SceneFileSource& src = desc.scene_file;
+    GltfRequest request;
+    request.ref = src.loc;
+    request.fps = job.frames.fps;
+    request.shutter = job.shutter;
+    request.frames = job.frames;
+    request.camera_name = src.camera;
+    request.camera_ref = src.camera_loc;
+    request.max_triangles = config::kMaxTotalTriangles - triangles;
+    request.max_transform_keys = config::kMaxKeys;
+    request.max_deformation_keys = config::kMaxDeformationKeys;
+    for (const Object& o : job.scene.objects) request.taken_names.push_back(o.name);
+    GltfScene gltf = loadGltfScene(base / src.path, request);
+    const int offset = static_cast<int>(job.scene.materials.size());
+    job.scene.materials.insert(job.scene.materials.end(), gltf.materials.begin(), gltf.materials.end());
+    for (Object& o : gltf.objects) {
+        o.material += offset;
+        job.scene.objects.push_back(std::move(o));
+    }
+    if (job.scene.objects.empty()) throwSceneError(src.loc, "the scene has no objects");
+    if (!src.job_camera) {
+        if (!gltf.camera)
+            throwConfigError(src.loc, "the job has no 'camera' and glTF scene '" + src.path + "' has no camera");
+        job.scene.camera = *gltf.camera;
+        const double film = static_cast<double>(job.scene.film.width) / job.scene.film.height;
+        if (gltf.camera_aspect > 0.0 && std::abs(gltf.camera_aspect - film) > 1e-3 * film)
+            gltf.warnings.push_back("the glTF camera's aspectRatio " + std::to_string(gltf.camera_aspect) +
+                                    " differs from the film's " + std::to_string(film) +
+                                    ": its yfov is kept, so the film shows more or less width");
+    }
+    job.warnings.insert(job.warnings.end(), gltf.warnings.begin(), gltf.warnings.end());
+    return gltf.buffer_files;
 }
 
 RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
@@ -61,7 +104,20 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
             object.deformation.push_back(DeformationKey{d.time, std::move(key.positions)});
         }
     }
-    job.warnings = validateScene(job.scene, desc.locations);
+    if (!desc.scene_file.path.empty()) {
+        const std::filesystem::path scene_path = base / desc.scene_file.path;
+        const std::vector<std::filesystem::path> buffers = addSceneFile(desc, base, total, job);
+        if (read_files) {
+            read_files->push_back(scene_path);
+            read_files->insert(read_files->end(), buffers.begin(), buffers.end());
+        }
+        // The glTF file's bytes are part of what the job renders: edits to it must change the hash.
+        std::ifstream in(scene_path, std::ios::binary);
+        job.config_hash = config::fnv1a64Hex(job.config_hash + std::string(std::istreambuf_iterator<char>(in), {}));
+    }
+    std::vector<std::string> warnings = validateScene(job.scene, desc.locations);
+    warnings.insert(warnings.end(), job.warnings.begin(), job.warnings.end());
+    job.warnings = std::move(warnings);
     return job;
 }
 

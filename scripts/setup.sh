@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools openexr
-  libglm-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  libglm-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
 )

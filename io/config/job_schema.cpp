@@ -285,7 +285,12 @@ int autoOrCount(const ConfigNode* node, const char* key, int fallback, int max) 
     return static_cast<int>(asInteger(*node, key, 1, max));
 }
 
-void readRender(MapReader map, RenderSettings& r) {
+void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
+    if (const ConfigNode* c = map.optional("camera")) {
+        scene_file.camera = asString(*c, "render.camera");
+        scene_file.camera_loc = c->loc;
+        if (scene_file.camera.empty()) throwConfigError(c->loc, "'render.camera' must not be empty");
+    }
     if (const ConfigNode* m = map.optional("method"))
         r.method = static_cast<Method>(
             asChoice(*m, "render.method", {"clipped", "stochastic", "accumulation", "frame0_only"}));
@@ -365,17 +370,28 @@ JobDescription readJobDescription(const ConfigNode& root) {
     job.version = 1;
 
     if (const ConfigNode* n = top.optional("film")) readFilm(MapReader(*n, "film"), job.scene.film);
-    readCamera(MapReader(top.required("camera"), "camera"), job.scene.camera, out.locations.camera_keys);
+    SceneFileSource& scene_file = out.scene_file;
+    if (const ConfigNode* n = top.optional("scene")) {
+        scene_file.path = asString(*n, "scene");
+        scene_file.loc = n->loc;
+        if (scene_file.path.empty()) throwConfigError(n->loc, "'scene' must not be empty");
+    }
+    // A glTF scene may bring the camera; a `camera` block of the job then replaces it.
+    const ConfigNode* camera = scene_file.path.empty() ? &top.required("camera") : top.optional("camera");
+    if (camera) readCamera(MapReader(*camera, "camera"), job.scene.camera, out.locations.camera_keys);
+    scene_file.job_camera = camera != nullptr;
     if (const ConfigNode* n = top.optional("shutter")) readShutter(MapReader(*n, "shutter"), job.shutter);
     if (const ConfigNode* n = top.optional("frames")) readFrames(MapReader(*n, "frames"), job.frames);
     const auto materials = readMaterials(top.optional("materials"), job.scene.materials);
     readLights(top.optional("lights"), job.scene.lights);
     job.scene.ambient = top.vec3("ambient", job.scene.ambient, 0.0, kBig, true);
 
-    const ConfigNode& objects_node = top.required("objects");
-    const auto& objects = asList(objects_node, "objects");
-    if (objects.empty()) throwSceneError(objects_node.loc, "the scene has no objects");
-    checkCount(objects_node, objects, "objects", 1 << 20);
+    // With a glTF scene the job's objects are additions and may be left out.
+    const ConfigNode* objects_node = scene_file.path.empty() ? &top.required("objects") : top.optional("objects");
+    static const std::vector<ConfigNode> none;
+    const auto& objects = objects_node ? asList(*objects_node, "objects") : none;
+    if (objects_node && objects.empty()) throwSceneError(objects_node->loc, "the scene has no objects");
+    if (objects_node) checkCount(*objects_node, objects, "objects", 1 << 20);
     std::uint64_t total = 0;
     for (std::size_t i = 0; i < objects.size(); ++i) {
         readObject(MapReader(objects[i], indexed("objects", i)), i, materials, out);
@@ -384,7 +400,12 @@ JobDescription readJobDescription(const ConfigNode& root) {
             throwConfigError(objects[i].loc, "the scene would have more than " + std::to_string(kMaxTotalTriangles) +
                                                  " triangles");
     }
-    if (const ConfigNode* n = top.optional("render")) readRender(MapReader(*n, "render"), job.render);
+    if (const ConfigNode* n = top.optional("render")) readRender(MapReader(*n, "render"), job.render, scene_file);
+    if (!scene_file.camera.empty() && scene_file.path.empty())
+        throwConfigError(scene_file.camera_loc, "'render.camera' picks a camera of a glTF scene; the job has no 'scene'");
+    if (!scene_file.camera.empty() && scene_file.job_camera)
+        throwConfigError(scene_file.camera_loc,
+                         "'render.camera' picks a glTF camera but the job has its own 'camera'; give one of them");
     if (const ConfigNode* n = top.optional("output")) readOutput(MapReader(*n, "output"), job.output);
     top.finish();
     return out;

@@ -45,11 +45,21 @@ struct MeshSource {
     std::vector<Deformation> deformation;
 };
 
+// The glTF scene a job names (`scene:`) and the camera it picks from it (`render.camera`).
+struct SceneFileSource {
+    std::string path;          // as written, relative to the job file's folder; empty: none
+    FileLoc loc;               // of the `scene` value
+    std::string camera;        // empty: the first camera of the glTF scene
+    FileLoc camera_loc;
+    bool job_camera = false;   // the job has its own `camera` block, which then wins
+};
+
 // Everything the document says, with scene objects still lacking meshes.
 struct JobDescription {
     RenderJob job;
     std::vector<MeshSource> meshes;  // one per job.scene.objects entry
     SceneLocations locations;
+    SceneFileSource scene_file;
 };
 
 // Walks the whole document against the schema (docs/config.md); every key must be consumed.

@@ -1,0 +1,880 @@
+#include "scene/gltf_loader.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "scene/gltf_animation.h"
+#include "scene/scene_validation.h"
+#include "scene/tiny_gltf_config.h"
+
+namespace clipblur {
+
+namespace {
+
+std::string pointer(const char* array, std::size_t index) { return std::string("/") + array + "/" + std::to_string(index); }
+
+bool isGlb(const std::string& bytes) { return bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0; }
+
+// Textures are a later item: images are neither decoded nor read, only their URIs kept.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+// The stated bound of resampled motion, relative to the object's size: a hundredth of a pixel for an
+// object 100 pixels across. Intervals are halved until their quarter points lie within half of it, the
+// margin for the deviation between the points checked.
+constexpr double kRelativeBound = 1e-4;
+constexpr double kRelativeTolerance = 0.5 * kRelativeBound;
+// Elements per accessor: an all-zero accessor (no bufferView) costs no bytes of the file.
+constexpr std::size_t kMaxAccessorCount = std::size_t{1} << 25;
+// Deformation keys times vertices of one morphed object (24 bytes each).
+constexpr std::size_t kMaxMorphPositions = std::size_t{1} << 25;
+// Nodes from a root to a leaf: the walk recurses, and every object composes its whole chain.
+constexpr std::size_t kMaxHierarchyDepth = 1024;
+// A camera's bound: its position (units) and, through a unit box, its direction (radians: a hundredth
+// of a pixel at 40 degrees over 720 pixels); bisected to half of it like objects.
+constexpr double kCameraTolerance = 1e-5;
+
+// Reads the model's accessors, checked against the spec and their buffers, and fails with the pointer
+// of what is wrong.
+class GltfReader {
+public:
+    GltfReader(const tinygltf::Model& model, const std::string& name, const GltfRequest& request)
+        : model_(model), name_(name), request_(request) {}
+
+    [[noreturn]] void fail(const std::string& where, const std::string& message) const {
+        const std::string ref = request_.ref.toString();
+        throw Error(ExitCode::Scene, where + ": " + message + (ref.empty() ? "" : " (glTF file of " + ref + ")"),
+                    FileLoc{name_, 0, 0});
+    }
+
+    // Every element of a float accessor of `components` numbers per element, checked finite.
+    std::vector<double> floats(int index, int type, const std::string& what) const {
+        const tinygltf::Accessor& a = accessor(index, what);
+        const std::string where = pointer("accessors", static_cast<std::size_t>(index));
+        if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != type)
+            fail(where, what + " must be float " + typeName(type));
+        std::vector<double> out;
+        const std::size_t n = components(type);
+        forEachElement(a, where, [&](const unsigned char* p) {
+            for (std::size_t c = 0; c < n; ++c) {
+                float v;
+                std::memcpy(&v, p + 4 * c, 4);
+                if (!std::isfinite(v)) fail(where, what + " holds a non-finite number");
+                out.push_back(v);
+            }
+        });
+        return out;
+    }
+
+    // Every component of an unsigned byte, short or int accessor of `type`.
+    std::vector<std::uint32_t> unsignedInts(int index, int type, const std::string& what) const {
+        const tinygltf::Accessor& a = accessor(index, what);
+        const std::string where = pointer("accessors", static_cast<std::size_t>(index));
+        const int ct = a.componentType;
+        if (a.type != type || a.normalized ||
+            (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+             ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+            fail(where, what + " must be unsigned byte, short or int " + typeName(type));
+        const std::size_t size = componentBytes(ct);
+        std::vector<std::uint32_t> out;
+        forEachElement(a, where, [&](const unsigned char* p) {
+            for (std::size_t c = 0; c < components(type); ++c) {
+                std::uint32_t v = 0;
+                std::memcpy(&v, p + c * size, size);  // little-endian, as glTF stores it
+                out.push_back(v);
+            }
+        });
+        return out;
+    }
+
+    std::vector<std::uint32_t> indices(int index, std::size_t vertex_count) const {
+        std::vector<std::uint32_t> out = unsignedInts(index, TINYGLTF_TYPE_SCALAR, "indices");
+        for (const std::uint32_t v : out)
+            if (v >= vertex_count)
+                fail(pointer("accessors", static_cast<std::size_t>(index)),
+                     "index " + std::to_string(v) + " is out of range: the primitive has " +
+                         std::to_string(vertex_count) + " vertices");
+        return out;
+    }
+
+    std::size_t count(int index, const std::string& what) const { return accessor(index, what).count; }
+
+private:
+    static std::size_t components(int type) {
+        switch (type) {
+            case TINYGLTF_TYPE_SCALAR: return 1;
+            case TINYGLTF_TYPE_VEC2: return 2;
+            case TINYGLTF_TYPE_VEC3: return 3;
+            case TINYGLTF_TYPE_VEC4: return 4;
+            case TINYGLTF_TYPE_MAT4: return 16;
+            default: return 0;
+        }
+    }
+
+    static std::string typeName(int type) {
+        switch (type) {
+            case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+            case TINYGLTF_TYPE_VEC3: return "VEC3";
+            case TINYGLTF_TYPE_VEC4: return "VEC4";
+            case TINYGLTF_TYPE_MAT4: return "MAT4";
+            default: return "?";
+        }
+    }
+
+    static std::size_t componentBytes(int component_type) {
+        switch (component_type) {
+            case TINYGLTF_COMPONENT_TYPE_BYTE:
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+            case TINYGLTF_COMPONENT_TYPE_SHORT:
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+            default: return 0;
+        }
+    }
+
+    const tinygltf::Accessor& accessor(int index, const std::string& what) const {
+        if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size())
+            fail("/accessors", what + " names accessor " + std::to_string(index) + ", which does not exist");
+        return model_.accessors[static_cast<std::size_t>(index)];
+    }
+
+    // Calls visit with the first byte of every element, after checking that all of them lie in the buffer.
+    template <typename Visit>
+    void forEachElement(const tinygltf::Accessor& a, const std::string& where, Visit&& visit) const {
+        if (a.sparse.isSparse) fail(where, "sparse accessors are not supported");
+        if (a.count == 0) fail(where, "count must be at least 1");
+        if (a.count > kMaxAccessorCount)
+            fail(where, "count " + std::to_string(a.count) + " is beyond the limit of " + std::to_string(kMaxAccessorCount));
+        const std::size_t element = componentBytes(a.componentType) * components(a.type);
+        if (element == 0) fail(where, "unsupported componentType or type");
+        if (a.bufferView < 0) {  // the spec's all-zero accessor
+            const std::vector<unsigned char> zeros(element, 0);
+            for (std::size_t i = 0; i < a.count; ++i) visit(zeros.data());
+            return;
+        }
+        if (static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size())
+            fail(where, "bufferView " + std::to_string(a.bufferView) + " does not exist");
+        const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+        const std::string view_where = pointer("bufferViews", static_cast<std::size_t>(a.bufferView));
+        if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size())
+            fail(view_where, "buffer " + std::to_string(view.buffer) + " does not exist");
+        const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
+        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+            fail(view_where, "byteOffset + byteLength lies beyond the buffer's " + std::to_string(data.size()) +
+                                 " bytes");
+        const std::size_t stride = view.byteStride == 0 ? element : view.byteStride;
+        if (stride < element) fail(view_where, "byteStride is smaller than an element of " + where);
+        const std::size_t size = view.byteLength;
+        if (a.byteOffset > size || a.count - 1 > (size - a.byteOffset) / stride ||
+            (a.count - 1) * stride + element > size - a.byteOffset)
+            fail(where, "count, byteOffset and stride reach beyond its bufferView");
+        const unsigned char* base = data.data() + view.byteOffset + a.byteOffset;
+        for (std::size_t i = 0; i < a.count; ++i) visit(base + i * stride);
+    }
+
+    const tinygltf::Model& model_;
+    const std::string& name_;
+    const GltfRequest& request_;
+};
+
+// A primitive's geometry before any node transform: positions, triangles, morph target offsets.
+struct PrimitiveGeometry {
+    std::vector<glm::dvec3> positions;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<std::vector<glm::dvec3>> targets;
+};
+
+std::vector<glm::dvec3> toVec3(const std::vector<double>& v) {
+    std::vector<glm::dvec3> out(v.size() / 3);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+    return out;
+}
+
+class SceneBuilder {
+public:
+    SceneBuilder(const tinygltf::Model& model, const std::string& name, const GltfRequest& request)
+        : model_(model), reader_(model, name, request), request_(request),
+          names_(request.taken_names.begin(), request.taken_names.end()) {}
+
+    GltfScene build() {
+        // A required extension changes what the file means; those ignored here only change shading.
+        for (std::size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
+            const std::string& e = model_.extensionsRequired[i];
+            if (e != "KHR_materials_unlit" && e != "KHR_materials_emissive_strength")
+                reader_.fail("/extensionsRequired/" + std::to_string(i), "extension " + e + " is not supported");
+        }
+        readMaterials();
+        readNodes();
+        readAnimations();
+        const int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (model_.scenes.empty()) reader_.fail("/scenes", "the file has no scene");
+        if (static_cast<std::size_t>(scene) >= model_.scenes.size())
+            reader_.fail("/scene", "scene " + std::to_string(scene) + " does not exist");
+        for (const int root : model_.scenes[static_cast<std::size_t>(scene)].nodes)
+            visit(root, {}, pointer("scenes", static_cast<std::size_t>(scene)) + "/nodes");
+        pickCamera();
+        if (!warnings_.empty()) out_.warnings.assign(warnings_.begin(), warnings_.end());
+        return std::move(out_);
+    }
+
+private:
+    void readMaterials() {
+        for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+            const tinygltf::Material& m = model_.materials[i];
+            const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
+            if (f.size() != 4 || !std::all_of(f.begin(), f.end(), [](double v) { return v >= 0.0 && v <= 1.0; }))
+                reader_.fail(pointer("materials", i) + "/pbrMetallicRoughness/baseColorFactor",
+                             "must be 4 numbers in [0, 1]");
+            Material mat;
+            mat.base_color = {f[0], f[1], f[2]};
+            mat.two_sided = m.doubleSided;
+            out_.materials.push_back(mat);
+            if (m.pbrMetallicRoughness.baseColorTexture.index >= 0)
+                warnings_.insert("glTF baseColorTexture is ignored (textures are not supported yet)");
+            if (m.extensions.count("KHR_materials_unlit"))
+                warnings_.insert("glTF KHR_materials_unlit is ignored (the shading has no unlit model)");
+            const bool emissive = std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(),
+                                              [](double v) { return v != 0.0; });
+            if (emissive || m.extensions.count("KHR_materials_emissive_strength"))
+                warnings_.insert("glTF emission is ignored (the shading has no emission)");
+        }
+        // The spec's default material: white, single-sided.
+        default_material_ = out_.materials.size();
+        out_.materials.push_back(Material{glm::dvec3(1.0), Texture{}, false});
+    }
+
+    void readNodes() {
+        nodes_.resize(model_.nodes.size());
+        for (std::size_t i = 0; i < model_.nodes.size(); ++i) {
+            const tinygltf::Node& n = model_.nodes[i];
+            AnimatedNode& a = nodes_[i];
+            const std::string where = pointer("nodes", i);
+            const auto finite = [&](const std::vector<double>& v, const char* what) {
+                if (!std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
+                    reader_.fail(where + "/" + what, "holds a non-finite number");
+            };
+            finite(n.translation, "translation");
+            finite(n.rotation, "rotation");
+            finite(n.scale, "scale");
+            finite(n.matrix, "matrix");
+            if (n.matrix.size() == 16) {
+                a.has_matrix = true;
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 4; ++r) a.matrix[c][r] = n.matrix[static_cast<std::size_t>(4 * c + r)];
+            }
+            if (n.translation.size() == 3) a.rest.translate = {n.translation[0], n.translation[1], n.translation[2]};
+            if (n.rotation.size() == 4) {
+                a.rest.rotate = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+                if (std::abs(glm::length(a.rest.rotate) - 1.0) > 1e-3) reader_.fail(where + "/rotation", "is not a unit quaternion");
+                // Unit to double precision: a float-rounded quaternion's matrix would shear by 1e-7.
+                a.rest.rotate = glm::normalize(a.rest.rotate);
+            }
+            if (n.scale.size() == 3) a.rest.scale = {n.scale[0], n.scale[1], n.scale[2]};
+        }
+        for (std::size_t i = 0; i < model_.nodes.size(); ++i)
+            for (const int child : model_.nodes[i].children) {
+                if (child < 0 || static_cast<std::size_t>(child) >= nodes_.size())
+                    reader_.fail(pointer("nodes", i) + "/children", "node " + std::to_string(child) + " does not exist");
+                if (!parents_.emplace(static_cast<std::size_t>(child), i).second)
+                    reader_.fail(pointer("nodes", static_cast<std::size_t>(child)), "the node has two parents");
+            }
+    }
+
+    // What a channel's output holds: `width` numbers per key, as accessor `type`.
+    struct TrackShape {
+        std::size_t width = 3;
+        int type = TINYGLTF_TYPE_VEC3;
+        bool rotation = false;
+    };
+
+    Track readTrack(std::size_t anim, const tinygltf::AnimationSampler& s, const TrackShape& shape) {
+        const std::string where = pointer("animations", anim);
+        Track track;
+        track.width = shape.width;
+        track.rotation = shape.rotation;
+        const std::size_t width = shape.width;
+        if (s.interpolation == "STEP") track.interpolation = Interpolation::Step;
+        else if (s.interpolation == "CUBICSPLINE") track.interpolation = Interpolation::CubicSpline;
+        else if (s.interpolation != "LINEAR") reader_.fail(where, "unknown interpolation '" + s.interpolation + "'");
+        track.times = reader_.floats(s.input, TINYGLTF_TYPE_SCALAR, "an animation input");
+        for (std::size_t k = 1; k < track.times.size(); ++k)
+            if (!(track.times[k] > track.times[k - 1]))
+                reader_.fail(pointer("accessors", static_cast<std::size_t>(s.input)),
+                             "animation key times must increase strictly (key " + std::to_string(k) + ")");
+        for (double& t : track.times) t *= request_.fps;
+        track.values = reader_.floats(s.output, shape.type, "an animation output");
+        const std::size_t per_key = (track.interpolation == Interpolation::CubicSpline ? 3 : 1) * width;
+        if (track.values.size() != per_key * track.times.size())
+            reader_.fail(pointer("accessors", static_cast<std::size_t>(s.output)),
+                         "an animation output needs " + std::to_string(per_key) + " numbers per key time, " +
+                             std::to_string(track.times.size()) + " key times");
+        if (track.interpolation == Interpolation::CubicSpline)  // tangents per second to per frame
+            for (std::size_t k = 0; k < track.times.size(); ++k)
+                for (std::size_t i = 0; i < width; ++i) {
+                    track.values[k * per_key + i] /= request_.fps;
+                    track.values[k * per_key + 2 * width + i] /= request_.fps;
+                }
+        return track;
+    }
+
+    // Every animation plays from glTF time 0; a node property animated twice is refused.
+    void readAnimations() {
+        for (std::size_t a = 0; a < model_.animations.size(); ++a) {
+            const tinygltf::Animation& anim = model_.animations[a];
+            for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+                const tinygltf::AnimationChannel& ch = anim.channels[c];
+                const std::string where = pointer("animations", a) + "/channels/" + std::to_string(c);
+                if (ch.target_node < 0 || static_cast<std::size_t>(ch.target_node) >= nodes_.size())
+                    reader_.fail(where, "target node " + std::to_string(ch.target_node) + " does not exist");
+                if (ch.sampler < 0 || static_cast<std::size_t>(ch.sampler) >= anim.samplers.size())
+                    reader_.fail(where, "sampler " + std::to_string(ch.sampler) + " does not exist");
+                const auto node = static_cast<std::size_t>(ch.target_node);
+                const tinygltf::AnimationSampler& s = anim.samplers[static_cast<std::size_t>(ch.sampler)];
+                if (!targeted_.insert({node, ch.target_path}).second)
+                    reader_.fail(where, "node " + std::to_string(node) + " " + ch.target_path + " is animated twice");
+                if (nodes_[node].has_matrix)
+                    reader_.fail(where, "targets node " + std::to_string(node) + ", which is given by a matrix");
+                if (ch.target_path == "translation" || ch.target_path == "scale") {
+                    const Track* track = &tracks_.emplace_back(readTrack(a, s, TrackShape{}));
+                    (ch.target_path == "scale" ? nodes_[node].scale : nodes_[node].translation) = track;
+                } else if (ch.target_path == "rotation") {
+                    const TrackShape shape{4, TINYGLTF_TYPE_VEC4, true};
+                    nodes_[node].rotation = &tracks_.emplace_back(readTrack(a, s, shape));
+                } else if (ch.target_path == "weights") {
+                    const TrackShape shape{targetCount(node, where), TINYGLTF_TYPE_SCALAR, false};
+                    weight_tracks_[node] = &tracks_.emplace_back(readTrack(a, s, shape));
+                } else {
+                    reader_.fail(where, "unknown target path '" + ch.target_path + "'");
+                }
+            }
+        }
+    }
+
+    std::size_t targetCount(std::size_t node, const std::string& where) const {
+        const int mesh = model_.nodes[node].mesh;
+        if (mesh < 0 || static_cast<std::size_t>(mesh) >= model_.meshes.size() ||
+            model_.meshes[static_cast<std::size_t>(mesh)].primitives.empty() ||
+            model_.meshes[static_cast<std::size_t>(mesh)].primitives[0].targets.empty())
+            reader_.fail(where, "animates weights of a node without a morphed mesh");
+        return model_.meshes[static_cast<std::size_t>(mesh)].primitives[0].targets.size();
+    }
+
+    void visit(int index, std::vector<std::size_t> chain, const std::string& where) {
+        if (index < 0 || static_cast<std::size_t>(index) >= nodes_.size())
+            reader_.fail(where, "node " + std::to_string(index) + " does not exist");
+        const auto node = static_cast<std::size_t>(index);
+        if (chain.size() >= kMaxHierarchyDepth)
+            reader_.fail(pointer("nodes", node), "the hierarchy is deeper than " + std::to_string(kMaxHierarchyDepth) + " levels");
+        if (!visited_.insert(node).second)
+            reader_.fail(pointer("nodes", node), "the node has two parents or lies on a cycle");
+        chain.push_back(node);
+        const tinygltf::Node& n = model_.nodes[node];
+        if (n.mesh >= 0) addMeshInstance(chain);
+        if (n.camera >= 0) cameras_.push_back(chain);
+        for (const int child : n.children) visit(child, chain, pointer("nodes", node) + "/children");
+    }
+
+    // Nodes of the chain from the deepest animated one down are split: the motion above, a static tail.
+    struct SplitChain {
+        ChainMotion motion;
+        glm::dmat4 tail{1.0};
+        bool animated = false;
+    };
+
+    SplitChain split(const std::vector<std::size_t>& chain) const {
+        SplitChain s;
+        std::size_t deepest = chain.size();
+        for (std::size_t i = 0; i < chain.size(); ++i)
+            if (nodes_[chain[i]].animated()) deepest = i;
+        s.animated = deepest < chain.size();
+        const std::size_t tail_from = s.animated ? deepest + 1 : 0;
+        for (std::size_t i = 0; i < tail_from; ++i) s.motion.chain.push_back(&nodes_[chain[i]]);
+        for (std::size_t i = tail_from; i < chain.size(); ++i) s.tail = s.tail * nodes_[chain[i]].local(0.0);
+        return s;
+    }
+
+    std::string uniqueName(std::string name) {
+        if (name.empty()) name = "node";
+        std::string candidate = name;
+        for (int k = 2; !names_.insert(candidate).second; ++k) candidate = name + "#" + std::to_string(k);
+        return candidate;
+    }
+
+    PrimitiveGeometry readPrimitive(const tinygltf::Primitive& p, const std::string& where) {
+        PrimitiveGeometry g;
+        const auto pos = p.attributes.find("POSITION");
+        if (pos == p.attributes.end()) reader_.fail(where + "/attributes", "POSITION is missing");
+        g.positions = toVec3(reader_.floats(pos->second, TINYGLTF_TYPE_VEC3, "POSITION"));
+        for (const glm::dvec3& v : g.positions)
+            if (std::abs(v.x) > kMaxCoordinate || std::abs(v.y) > kMaxCoordinate || std::abs(v.z) > kMaxCoordinate)
+                reader_.fail(pointer("accessors", static_cast<std::size_t>(pos->second)), "a position beyond 1e8");
+        std::vector<std::uint32_t> idx;
+        if (p.indices >= 0) {
+            idx = reader_.indices(p.indices, g.positions.size());
+        } else {
+            idx.resize(g.positions.size());
+            for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<std::uint32_t>(i);
+        }
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (idx.size() % 3 != 0) reader_.fail(where, "TRIANGLES needs a multiple of 3 indices");
+            for (std::size_t i = 0; i + 2 < idx.size(); i += 3) g.triangles.push_back({idx[i], idx[i + 1], idx[i + 2]});
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (std::size_t i = 0; i + 2 < idx.size(); ++i)
+                g.triangles.push_back(i % 2 == 0 ? std::array{idx[i], idx[i + 1], idx[i + 2]}
+                                                 : std::array{idx[i + 1], idx[i], idx[i + 2]});
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            for (std::size_t i = 1; i + 1 < idx.size(); ++i) g.triangles.push_back({idx[0], idx[i], idx[i + 1]});
+        }
+        for (std::size_t t = 0; t < p.targets.size(); ++t) {
+            const auto d = p.targets[t].find("POSITION");
+            std::vector<glm::dvec3> delta(g.positions.size(), glm::dvec3(0.0));
+            if (d != p.targets[t].end()) delta = toVec3(reader_.floats(d->second, TINYGLTF_TYPE_VEC3, "a morph target POSITION"));
+            if (delta.size() != g.positions.size())
+                reader_.fail(where + "/targets/" + std::to_string(t), "POSITION count differs from the primitive's");
+            g.targets.push_back(std::move(delta));
+        }
+        return g;
+    }
+
+    std::vector<double> restWeights(std::size_t node, std::size_t targets) const {
+        const tinygltf::Node& n = model_.nodes[node];
+        const std::vector<double>& w = !n.weights.empty() ? n.weights
+                                                          : model_.meshes[static_cast<std::size_t>(n.mesh)].weights;
+        if (w.empty()) return std::vector<double>(targets, 0.0);
+        if (w.size() != targets) reader_.fail(pointer("nodes", node), "weights count differs from the morph targets'");
+        return w;
+    }
+
+    void addMeshInstance(const std::vector<std::size_t>& chain);
+    void buildObject(const std::vector<std::size_t>& chain, std::size_t prim, PrimitiveGeometry g);
+    // Positions over time as deformation keys: at every key time of `tracks` (with STEP holds), bisected
+    // unless `exact`; only inside the rendered span when `span`.
+    struct DeformationSource {
+        std::function<std::vector<glm::dvec3>(double)> at;
+        std::vector<const Track*> tracks;
+        bool exact = true;
+        bool span = false;
+    };
+    void followDeformation(Object& object, const DeformationSource& source, const std::string& where);
+
+    static std::vector<glm::dvec3> morphed(const PrimitiveGeometry& g, const Track& weights, double t) {
+        std::vector<double> w(weights.width);
+        weights.eval(t, w.data());
+        std::vector<glm::dvec3> out = g.positions;
+        for (std::size_t i = 0; i < w.size() && i < g.targets.size(); ++i)
+            for (std::size_t v = 0; v < out.size(); ++v) out[v] += w[i] * g.targets[i][v];
+        return out;
+    }
+
+    int materialOf(const tinygltf::Primitive& p, int mesh, std::size_t prim) const {
+        if (p.material >= static_cast<int>(model_.materials.size()))
+            reader_.fail(pointer("meshes", static_cast<std::size_t>(mesh)) + "/primitives/" + std::to_string(prim),
+                         "material " + std::to_string(p.material) + " does not exist");
+        return p.material < 0 ? static_cast<int>(default_material_) : p.material;
+    }
+    void clipToSpan(KeyPlan& plan) const;
+
+    // A skin whose joints do not move: one key, the bind pose, at time 0.
+    static Track stillTrack() {
+        Track t;
+        t.times = {0.0};
+        t.values = {0.0, 0.0, 0.0};
+        return t;
+    }
+    DeformationSource skinSource(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
+    std::vector<const AnimatedNode*> chainTo(std::size_t node) const;
+    void checkJumps(const KeyPlan& plan, const std::string& where) const;
+    void pickCamera();
+
+    const tinygltf::Model& model_;
+    GltfReader reader_;
+    const GltfRequest& request_;
+    GltfScene out_;
+    std::size_t default_material_ = 0;
+    std::vector<AnimatedNode> nodes_;
+    std::deque<Track> tracks_;
+    std::map<std::size_t, const Track*> weight_tracks_;
+    std::map<std::size_t, std::size_t> parents_;
+    std::set<std::pair<std::size_t, std::string>> targeted_;
+    std::set<std::size_t> visited_;
+    std::set<std::string> names_;
+    std::set<std::string> warnings_;
+    std::vector<std::vector<std::size_t>> cameras_;
+    std::uint64_t triangles_ = 0;
+};
+
+void SceneBuilder::addMeshInstance(const std::vector<std::size_t>& chain) {
+    const std::size_t node = chain.back();
+    const tinygltf::Node& n = model_.nodes[node];
+    if (static_cast<std::size_t>(n.mesh) >= model_.meshes.size())
+        reader_.fail(pointer("nodes", node), "mesh " + std::to_string(n.mesh) + " does not exist");
+    if (n.skin >= 0 && static_cast<std::size_t>(n.skin) >= model_.skins.size())
+        reader_.fail(pointer("nodes", node), "skin " + std::to_string(n.skin) + " does not exist");
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(n.mesh)];
+    const std::string mesh_where = pointer("meshes", static_cast<std::size_t>(n.mesh));
+    for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
+        const tinygltf::Primitive& p = mesh.primitives[i];
+        const std::string where = mesh_where + "/primitives/" + std::to_string(i);
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        if (mode < TINYGLTF_MODE_TRIANGLES) {
+            warnings_.insert("glTF points and lines are skipped (" + where + " and any others)");
+            continue;
+        }
+        if (mode > TINYGLTF_MODE_TRIANGLE_FAN) reader_.fail(where, "unknown mode " + std::to_string(mode));
+        if (p.attributes.count("JOINTS_0") && n.skin < 0) reader_.fail(where, "JOINTS_0 without a skin on the node");
+        if (p.targets.size() != mesh.primitives[0].targets.size())
+            reader_.fail(where, "primitives of one mesh must have the same number of morph targets");
+        PrimitiveGeometry g = readPrimitive(p, where);
+        triangles_ += g.triangles.size();
+        if (triangles_ > request_.max_triangles)
+            reader_.fail(where, "the scene has more than " + std::to_string(request_.max_triangles) + " triangles");
+        if (g.triangles.empty()) {
+            warnings_.insert("glTF primitives without triangles are skipped (" + where + " and any others)");
+            continue;
+        }
+        buildObject(chain, i, std::move(g));
+    }
+}
+
+void SceneBuilder::checkJumps(const KeyPlan& plan, const std::string& where) const {
+    const Shutter& s = request_.shutter;
+    for (std::size_t i = 0; i + 1 < plan.times.size(); ++i) {
+        if (!plan.jump_after[i]) continue;
+        // Frames k whose open shutter (k + open, k + close) meets the jump window (h, j).
+        const double h = plan.times[i];
+        const double j = plan.times[i + 1];
+        const double lo = std::max(static_cast<double>(request_.frames.first), std::floor(h - s.close) + 1.0);
+        const double hi = std::min(static_cast<double>(request_.frames.last), std::ceil(j - s.open) - 1.0);
+        if (lo <= hi)
+            reader_.fail(where, "a STEP key jumps at frame " + std::to_string(j) + ", inside the shutter of frame " +
+                                    std::to_string(static_cast<long long>(lo)) +
+                                    ": a jump within the shutter cannot be rendered");
+    }
+}
+
+void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_t prim, PrimitiveGeometry g) {
+    const std::size_t node = chain.back();
+    const tinygltf::Node& n = model_.nodes[node];
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(n.mesh)];
+    const std::string where = pointer("nodes", node);
+    if (n.skin >= 0) {
+        // A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints.
+        Object object;
+        object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
+        object.loc = request_.ref;
+        object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
+        object.mesh.triangles = g.triangles;
+        object.mesh.positions = g.positions;
+        followDeformation(object, skinSource(node, mesh.primitives[prim], g), where + "/skin");
+        out_.objects.push_back(std::move(object));
+        return;
+    }
+    const SplitChain s = split(chain);
+    // The static tail is folded into the mesh, the offsets by its linear part only.
+    for (glm::dvec3& p : g.positions) p = glm::dvec3(s.tail * glm::dvec4(p, 1.0));
+    for (auto& target : g.targets)
+        for (glm::dvec3& d : target) d = glm::dvec3(s.tail * glm::dvec4(d, 0.0));
+
+    Object object;
+    object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
+    object.loc = request_.ref;
+    object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
+    object.mesh.triangles = g.triangles;
+    object.mesh.positions = g.positions;
+    const std::vector<double> rest = restWeights(node, g.targets.size());
+    for (std::size_t t = 0; t < g.targets.size(); ++t)
+        for (std::size_t v = 0; v < g.positions.size(); ++v) object.mesh.positions[v] += rest[t] * g.targets[t][v];
+    const auto weights = weight_tracks_.find(node);
+    if (weights != weight_tracks_.end()) {
+        DeformationSource morph;
+        morph.at = [&](double t) { return morphed(g, *weights->second, t); };
+        morph.tracks = {weights->second};
+        morph.exact = weights->second->interpolation != Interpolation::CubicSpline;
+        followDeformation(object, morph, where + "/weights");
+    }
+
+    if (s.animated) {
+        glm::dvec3 lo(std::numeric_limits<double>::max());
+        glm::dvec3 hi(std::numeric_limits<double>::lowest());
+        const auto grow = [&](const std::vector<glm::dvec3>& ps) {
+            for (const glm::dvec3& p : ps) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+        };
+        grow(object.mesh.positions);
+        for (const DeformationKey& k : object.deformation) grow(k.positions);
+        ResampleSpec spec;
+        for (int c = 0; c < 8; ++c) spec.corners.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+        const KeyPlan plan = planKeys(s.motion);
+        checkJumps(plan, where);
+        const glm::dmat4 first = s.motion.world(plan.times.front());
+        const double size = glm::length(glm::dvec3(first * glm::dvec4(hi, 1.0)) - glm::dvec3(first * glm::dvec4(lo, 1.0)));
+        spec.tolerance = std::max(kRelativeTolerance * size, 1e-12);
+        spec.max_keys = request_.max_transform_keys;
+        try {
+            object.transform = followChain(s.motion, plan, spec);
+        } catch (const std::domain_error& e) {
+            reader_.fail(where, std::string("its world transform has ") + e.what() + ", which transform keys cannot hold");
+        } catch (const std::length_error&) {
+            reader_.fail(where, "its motion needs more than " + std::to_string(spec.max_keys) + " transform keys");
+        }
+    }
+    out_.objects.push_back(std::move(object));
+}
+
+void SceneBuilder::followDeformation(Object& object, const DeformationSource& source, const std::string& where) {
+    const auto at = [&](double t) { return DeformationKey{t, source.at(t)}; };
+    KeyPlan plan = planTimes(source.tracks);
+    checkJumps(plan, where);
+    if (source.span) clipToSpan(plan);
+    std::vector<DeformationKey> keys{at(plan.times.front())};
+    double size = 0.0;
+    for (const glm::dvec3& p : keys[0].positions) size = std::max(size, glm::length(p - keys[0].positions[0]));
+    const double tolerance = std::max(kRelativeTolerance * size, 1e-12);
+    const auto deviation = [&](const DeformationKey& a, const DeformationKey& b, double u) {
+        const DeformationKey exact = at(a.time + u * (b.time - a.time));
+        double worst = 0.0;
+        for (std::size_t v = 0; v < exact.positions.size(); ++v)
+            worst = std::max(worst, glm::length(glm::mix(a.positions[v], b.positions[v], u) - exact.positions[v]));
+        return worst;
+    };
+    std::size_t i = 1;
+    while (i < plan.times.size()) {
+        DeformationKey next = at(plan.times[i]);
+        // Not linear between the key times: halve the interval until the quarter points lie within the
+        // tolerance.
+        while (!source.exact && !plan.jump_after[i - 1] && keys.size() < request_.max_deformation_keys &&
+               std::max({deviation(keys.back(), next, 0.25), deviation(keys.back(), next, 0.5),
+                         deviation(keys.back(), next, 0.75)}) > tolerance)
+            next = at(0.5 * (keys.back().time + next.time));
+        if (next.time == plan.times[i]) ++i;
+        keys.push_back(std::move(next));
+        if (keys.size() > request_.max_deformation_keys || keys.size() * object.mesh.positions.size() > kMaxMorphPositions)
+            reader_.fail(where, "the deformation needs more than " + std::to_string(request_.max_deformation_keys) +
+                                    " keys or more than " + std::to_string(kMaxMorphPositions) + " key positions");
+    }
+    object.mesh.positions = keys.front().positions;
+    object.deformation = std::move(keys);
+}
+
+// Key times inside the rendered span only, with its ends: skins need keys at every joint's key time,
+// and a long animation would exceed Embree's 129 time steps for nothing outside the frames rendered.
+void SceneBuilder::clipToSpan(KeyPlan& plan) const {
+    const double lo = request_.frames.first + request_.shutter.open;
+    const double hi = request_.frames.last + request_.shutter.close;
+    KeyPlan clipped;
+    clipped.times.push_back(lo);
+    clipped.jump_after.push_back(false);
+    for (std::size_t i = 0; i < plan.times.size(); ++i)
+        if (plan.times[i] > lo && plan.times[i] < hi) {
+            clipped.jump_after.back() = clipped.jump_after.back() || (i > 0 && plan.jump_after[i - 1]);
+            clipped.times.push_back(plan.times[i]);
+            clipped.jump_after.push_back(plan.jump_after[i]);
+        }
+    if (hi > lo) {
+        clipped.times.push_back(hi);
+        clipped.jump_after.push_back(false);
+    }
+    plan = std::move(clipped);
+}
+
+std::vector<const AnimatedNode*> SceneBuilder::chainTo(std::size_t node) const {
+    std::vector<const AnimatedNode*> chain{&nodes_[node]};
+    for (auto p = parents_.find(node); p != parents_.end(); p = parents_.find(p->second)) {
+        if (chain.size() >= kMaxHierarchyDepth)
+            reader_.fail(pointer("nodes", node), "the hierarchy is deeper than " + std::to_string(kMaxHierarchyDepth) + " levels");
+        chain.push_back(&nodes_[p->second]);
+    }
+    std::reverse(chain.begin(), chain.end());
+    return chain;
+}
+
+// Linear blend skinning (glTF 2.0, 3.7.3): each vertex moved by the weighted sum of its joints' world
+// matrices times their inverse bind matrices, after the morph targets.
+SceneBuilder::DeformationSource SceneBuilder::skinSource(std::size_t node, const tinygltf::Primitive& p,
+                                                         const PrimitiveGeometry& g) {
+    const auto skin_index = static_cast<std::size_t>(model_.nodes[node].skin);
+    const tinygltf::Skin& skin = model_.skins[skin_index];
+    const std::string where = pointer("skins", skin_index);
+    if (skin.joints.empty()) reader_.fail(where, "a skin needs joints");
+    if (p.attributes.count("JOINTS_1") || p.attributes.count("WEIGHTS_1"))
+        reader_.fail(where, "at most 4 joints per vertex (JOINTS_0, WEIGHTS_0) are supported");
+    const auto joints_at = p.attributes.find("JOINTS_0");
+    const auto weights_at = p.attributes.find("WEIGHTS_0");
+    if (joints_at == p.attributes.end() || weights_at == p.attributes.end())
+        reader_.fail(pointer("nodes", node), "a skinned mesh needs JOINTS_0 and WEIGHTS_0");
+    auto joints = std::make_shared<std::vector<std::uint32_t>>(reader_.unsignedInts(joints_at->second, TINYGLTF_TYPE_VEC4, "JOINTS_0"));
+    auto weights = std::make_shared<std::vector<double>>(reader_.floats(weights_at->second, TINYGLTF_TYPE_VEC4, "WEIGHTS_0"));
+    if (joints->size() != 4 * g.positions.size() || weights->size() != 4 * g.positions.size())
+        reader_.fail(pointer("nodes", node), "JOINTS_0 and WEIGHTS_0 need one element per vertex");
+    for (const std::uint32_t j : *joints)
+        if (j >= skin.joints.size())
+            reader_.fail(pointer("accessors", static_cast<std::size_t>(joints_at->second)),
+                         "joint " + std::to_string(j) + " is out of range: the skin has " + std::to_string(skin.joints.size()));
+    auto bind = std::make_shared<std::vector<glm::dmat4>>(skin.joints.size(), glm::dmat4(1.0));
+    if (skin.inverseBindMatrices >= 0) {
+        const std::vector<double> m = reader_.floats(skin.inverseBindMatrices, TINYGLTF_TYPE_MAT4, "inverseBindMatrices");
+        if (m.size() != 16 * skin.joints.size()) reader_.fail(where, "inverseBindMatrices needs one matrix per joint");
+        for (std::size_t j = 0; j < bind->size(); ++j)
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) (*bind)[j][c][r] = m[16 * j + static_cast<std::size_t>(4 * c + r)];
+    }
+    DeformationSource source;
+    auto chains = std::make_shared<std::vector<ChainMotion>>();
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+        const int joint = skin.joints[j];
+        if (joint < 0 || static_cast<std::size_t>(joint) >= nodes_.size())
+            reader_.fail(where + "/joints/" + std::to_string(j), "node " + std::to_string(joint) + " does not exist");
+        chains->push_back(ChainMotion{chainTo(static_cast<std::size_t>(joint))});
+        for (const AnimatedNode* a : chains->back().chain)
+            for (const Track* t : {a->translation, a->rotation, a->scale})
+                if (t && std::find(source.tracks.begin(), source.tracks.end(), t) == source.tracks.end())
+                    source.tracks.push_back(t);
+    }
+    const auto morph = weight_tracks_.find(node);
+    const Track* morph_track = morph == weight_tracks_.end() ? nullptr : morph->second;
+    if (morph_track) source.tracks.push_back(morph_track);
+    if (source.tracks.empty()) source.tracks.push_back(&tracks_.emplace_back(stillTrack()));
+    source.exact = false;
+    source.span = true;
+    auto rest = std::make_shared<std::vector<glm::dvec3>>(g.positions);
+    const std::vector<double> rest_weights = restWeights(node, g.targets.size());
+    for (std::size_t t = 0; t < g.targets.size(); ++t)
+        for (std::size_t v = 0; v < rest->size(); ++v) (*rest)[v] += rest_weights[t] * g.targets[t][v];
+    source.at = [=, &g](double t) {
+        const std::vector<glm::dvec3> base = morph_track ? morphed(g, *morph_track, t) : *rest;
+        std::vector<glm::dmat4> m(chains->size());
+        for (std::size_t j = 0; j < m.size(); ++j) m[j] = (*chains)[j].world(t) * (*bind)[j];
+        std::vector<glm::dvec3> out(base.size(), glm::dvec3(0.0));
+        for (std::size_t v = 0; v < base.size(); ++v)
+            for (std::size_t k = 0; k < 4; ++k)
+                out[v] += (*weights)[4 * v + k] * glm::dvec3(m[(*joints)[4 * v + k]] * glm::dvec4(base[v], 1.0));
+        return out;
+    };
+    return source;
+}
+
+void SceneBuilder::pickCamera() {
+    std::vector<std::size_t> matches;
+    for (std::size_t i = 0; i < cameras_.size(); ++i) {
+        const tinygltf::Node& n = model_.nodes[cameras_[i].back()];
+        if (static_cast<std::size_t>(n.camera) >= model_.cameras.size())
+            reader_.fail(pointer("nodes", cameras_[i].back()), "camera " + std::to_string(n.camera) + " does not exist");
+        const std::string& camera_name = model_.cameras[static_cast<std::size_t>(n.camera)].name;
+        if (request_.camera_name.empty() || n.name == request_.camera_name || camera_name == request_.camera_name)
+            matches.push_back(i);
+    }
+    if (!request_.camera_name.empty()) {
+        if (matches.empty())
+            throwConfigError(request_.camera_ref, "no camera node or camera named '" + request_.camera_name + "' in " +
+                                                      request_.ref.toString());
+        if (matches.size() > 1)
+            throwConfigError(request_.camera_ref, "'" + request_.camera_name + "' names " +
+                                                      std::to_string(matches.size()) + " camera nodes; name one node");
+    }
+    if (matches.empty()) return;
+    const std::vector<std::size_t>& chain = cameras_[matches.front()];
+    const std::size_t node = chain.back();
+    const std::string where = pointer("cameras", static_cast<std::size_t>(model_.nodes[node].camera));
+    const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(model_.nodes[node].camera)];
+    if (c.type != "perspective") reader_.fail(where, "only perspective cameras are supported");
+    const double yfov = c.perspective.yfov;
+    if (!(yfov > 0.0 && yfov * 180.0 / M_PI <= 179.0)) reader_.fail(where + "/perspective/yfov", "must be in (0, 179] degrees");
+    if (!(c.perspective.aspectRatio >= 0.0) || !std::isfinite(c.perspective.aspectRatio))
+        reader_.fail(where + "/perspective/aspectRatio", "must be a positive number");
+    Camera camera;
+    camera.vfov_degrees = yfov * 180.0 / M_PI;
+    out_.camera_aspect = c.perspective.aspectRatio;
+    SplitChain s = split(chain);
+    s.motion.tail = s.tail;
+    s.motion.rigid = true;
+    if (!s.animated) s.motion.chain.clear();
+    KeyPlan still;
+    still.times = {0.0};
+    still.jump_after = {false};
+    still.exact = true;
+    const KeyPlan plan = s.animated ? planKeys(s.motion) : still;
+    checkJumps(plan, pointer("nodes", node));
+    ResampleSpec spec;
+    for (int k = 0; k < 8; ++k) spec.corners.push_back({k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0});
+    spec.tolerance = 0.5 * kCameraTolerance;
+    spec.max_keys = request_.max_transform_keys;
+    std::vector<TransformKey> keys;
+    try {
+        keys = followChain(s.motion, plan, spec);
+    } catch (const std::domain_error& e) {
+        reader_.fail(pointer("nodes", node), std::string("the camera's world transform has ") + e.what());
+    } catch (const std::length_error&) {
+        reader_.fail(pointer("nodes", node), "the camera's motion needs more than " + std::to_string(spec.max_keys) + " keys");
+    }
+    for (const TransformKey& k : keys)
+        camera.keys.push_back({k.time, k.translate, k.rotate * glm::dvec3(0, 0, -1), k.rotate * glm::dvec3(0, 1, 0)});
+    out_.camera = camera;
+}
+
+GltfScene buildScene(tinygltf::Model& model, const std::string& name, const GltfRequest& request) {
+    return SceneBuilder(model, name, request).build();
+}
+
+}  // namespace
+
+GltfScene parseGltfScene(const std::string& bytes, const std::string& name, const std::filesystem::path& base,
+                         const GltfRequest& request) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err;
+    std::string warn;
+    bool ok = false;
+    try {
+        if (isGlb(bytes))
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             static_cast<unsigned int>(bytes.size()), base.string());
+        else
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
+                                            base.string());
+    } catch (const std::exception& e) {
+        err = e.what();
+    }
+    if (!ok) {
+        while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+        const std::string ref = request.ref.toString();
+        throw Error(ExitCode::Scene, "not a valid glTF file: " + (err.empty() ? std::string("unreadable") : err) +
+                                         (ref.empty() ? "" : " (glTF file of " + ref + ")"),
+                    FileLoc{name, 0, 0});
+    }
+    GltfScene scene = buildScene(model, name, request);
+    for (const tinygltf::Buffer& b : model.buffers)
+        if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) scene.buffer_files.push_back(base / b.uri);
+    return scene;
+}
+
+GltfScene loadGltfScene(const std::filesystem::path& file, const GltfRequest& request) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(file, ec);
+    if (ec || !std::filesystem::is_regular_file(file))
+        throwSceneError(request.ref, "cannot read glTF file '" + file.string() + "'");
+    if (size > kMaxGltfFileBytes)
+        throwSceneError(request.ref, "glTF file '" + file.string() + "' is larger than 512 MiB");
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) throwSceneError(request.ref, "cannot read glTF file '" + file.string() + "'");
+    return parseGltfScene(bytes, file.string(), file.parent_path(), request);
+}
+
+}  // namespace clipblur
