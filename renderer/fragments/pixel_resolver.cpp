@@ -176,10 +176,12 @@ void PixelResolver::shrinkPiece(std::size_t qi, const ConvexPolygon& w, const Co
         capped_.clear();
         splitToCapacity(r, kMaxStoredVertices, capped_);
         for (const ConvexPolygon& c : capped_) {
+            double piece_area = 0.0;
+            if (dropIfSliver(c, piece_area)) continue;  // a split can leave a sliver of a larger remnant
             Piece p = q;
             p.poly = c;
             p.box = c.bounds();
-            p.area = c.area();
+            p.area = piece_area;
             if (!reused) {
                 pieces_[qi] = p;
                 reused = true;
@@ -197,10 +199,12 @@ void PixelResolver::addPiece(const ConvexPolygon& poly, const Piece& data) {
     capped_.clear();
     splitToCapacity(poly, kMaxStoredVertices, capped_);
     for (const ConvexPolygon& c : capped_) {
+        double piece_area = 0.0;
+        if (dropIfSliver(c, piece_area)) continue;  // a split can leave a sliver of a larger polygon
         Piece p = data;
         p.poly = c;
         p.box = c.bounds();
-        p.area = c.area();
+        p.area = piece_area;
         p.dead = false;
         pieces_.push_back(p);
     }
