@@ -209,244 +209,369 @@ SweepInterval sweepInterval(const PixelBounds& tile, const SubframePlan& plan, i
     return s;
 }
 
-// The paper's method over one shutter segment [ts, te]: fragment sets at both ends, per-tile subframes,
-// propagation, re-clip and shading; adds weight x (the segment's average) to `sums`. `subframes` > 0
-// fixes this segment's count. `bands`: every segment's guard band (guardBandPixels), in order.
-void renderSegment(const ClippedContext& ctx, double ts, double te, int subframes, double weight, int segment,
-                   const std::vector<int>& bands, WindowSums& sums, SegmentTotals& totals) {
-    const int segments = static_cast<int>(bands.size());
+// One shutter segment [begin, end] of the frame, its share of the shutter, and every segment's guard band.
+struct SegmentSpec {
+    double begin = 0.0, end = 0.0;
+    double weight = 1.0;
+    int subframes = 0;  // > 0: this segment's fixed re-clip count
+    int index = 0;
+    std::span<const int> bands;  // every segment's guard band (guardBandPixels), in order
+};
+
+// Step 1's result: the clipped, shaded fragment sets at the segment's ends and the still image at its start.
+struct SegmentEnds {
+    bool still_scene = false;  // nothing moves: the still image is the answer
+    bool both_frames = false;
+    std::vector<FragmentTriangle> open, close;
+    PixelSums still;
+};
+
+// Fragment sets over the image and a guard band wide enough that everything seen during the segment is
+// in one of them. A closing set that the next segment opens with is built with that segment's band too,
+// and its still image.
+SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, SegmentTotals& totals) {
     const Scene& scene = ctx.job.scene;
     const RenderSettings& settings = ctx.job.render;
+    const bool track_objects = ctx.job.output.cryptomatte.enabled;
+    SegmentEnds ends;
     // Model no more than the scene needs: when nothing moves (and the subframe count is automatic) the
     // segment-start image is the answer, with no fragment triangles kept, no closing set and no subframes.
-    const bool still_scene = subframes == 0 && sceneIsStill(scene, ts, te);
-    const bool both_frames = settings.method != Method::Frame0Only && !still_scene;
-    const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
-    const bool track_objects = ctx.job.output.cryptomatte.enabled;
-
-    // 1. Clipped, shaded fragment sets at the segment's ends, over the image and a guard band wide
-    // enough that everything seen during the segment is in one of them. A closing set that the next
-    // segment opens with is built with that segment's band too, and its still image.
-    const bool carry = both_frames && segment + 1 < segments;
-    int band = bands[static_cast<std::size_t>(segment)];
+    ends.still_scene = seg.subframes == 0 && sceneIsStill(scene, seg.begin, seg.end);
+    ends.both_frames = settings.method != Method::Frame0Only && !ends.still_scene;
+    const bool carry = ends.both_frames && seg.index + 1 < static_cast<int>(seg.bands.size());
+    int band = seg.bands[static_cast<std::size_t>(seg.index)];
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
-    if (carry) band = std::max(band, bands[static_cast<std::size_t>(segment) + 1]);
-    const auto grid = [&](int b) {
-        return TileGrid(-b, -b, scene.film.width + 2 * b, scene.film.height + 2 * b, settings.tile_size);
-    };
-    const FrameFragmentOptions options{settings.visibility_rays, !still_scene, settings.audit,
+    if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
+    const TileGrid grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band, settings.tile_size);
+    const FrameFragmentOptions options{settings.visibility_rays, !ends.still_scene, settings.audit,
                                        ctx.backdrop.behind_everything ? &ctx.backdrop.objects : nullptr};
-    auto stage = Clock::now();
+    const auto stage = Clock::now();
     const std::size_t film_pixels = scene.film.pixels().area();
-    std::vector<FragmentTriangle> open;
-    PixelSums still;
     if (totals.carried) {
-        open = std::move(totals.carried->first);
-        still = std::move(totals.carried->second);
+        ends.open = std::move(totals.carried->first);
+        ends.still = std::move(totals.carried->second);
         totals.carried.reset();
     } else {
         FrameFragmentStats open_stats;
-        still.resize(film_pixels, track_objects);
-        open = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), ts, ctx.shader,
-                                   options, ctx.callbacks, &still, open_stats);
+        ends.still.resize(film_pixels, track_objects);
+        ends.open = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid, seg.begin, ctx.shader,
+                                        options, ctx.callbacks, &ends.still, open_stats);
         totals.stats.open.merge(open_stats);
         ++totals.stats.frame_sets;
     }
-    std::vector<FragmentTriangle> close;
-    if (both_frames) {
+    if (ends.both_frames) {
         FrameFragmentStats close_stats;
         PixelSums next_still;
         if (carry) next_still.resize(film_pixels, track_objects);
-        close = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid(band), te, ctx.shader,
-                                    options, ctx.callbacks, carry ? &next_still : nullptr, close_stats);
+        ends.close = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid, seg.end, ctx.shader,
+                                         options, ctx.callbacks, carry ? &next_still : nullptr, close_stats);
         totals.stats.close.merge(close_stats);
         ++totals.stats.frame_sets;
-        if (carry) totals.carried.emplace(close, std::move(next_still));
+        if (carry) totals.carried.emplace(ends.close, std::move(next_still));
     }
     totals.stats.seconds.frame_fragments += secondsSince(stage);
-    stage = Clock::now();
+    return ends;
+}
 
-    // 2. Subframes per tile from the fragments' image-plane speeds (eq. 24, corrected).
+// Step 2's result: how the fragments move, each tile's re-clips, and with sweep integration the
+// positions and camera turns of each interval, shared by every moving tile. Filled in place: `layers`
+// points into `ode` and into the segment's ends.
+struct SegmentPlan {
     FragmentLayers layers;
-    layers.triangles = {&open, both_frames ? &close : nullptr};
-    layers.time = {ts, te};
-    layers.eye = {evalCamera(scene.camera, ts).position, evalCamera(scene.camera, te).position};
     std::optional<OdePropagator> ode;
+    MotionPlan motion;
+    int intervals = 1;
+    std::vector<int> positions;        // sweep: per interval
+    std::vector<IntervalTurns> turns;  // sweep: a turning camera's turns per interval
+};
+
+// Re-clips per tile from the fragments' image-plane speeds (eq. 24, corrected) or, with sweep
+// integration, from relative motion and path bend (planMotion).
+void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const SegmentEnds& ends, SegmentTotals& totals,
+                 SegmentPlan& plan) {
+    const Scene& scene = ctx.job.scene;
+    const RenderSettings& settings = ctx.job.render;
+    const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
+    const auto stage = Clock::now();
+    FragmentLayers& layers = plan.layers;
+    layers.triangles = {&ends.open, ends.both_frames ? &ends.close : nullptr};
+    layers.time = {seg.begin, seg.end};
+    layers.eye = {evalCamera(scene.camera, seg.begin).position, evalCamera(scene.camera, seg.end).position};
     if (settings.path_method != PathMethod::Exact) {
-        ode.emplace(scene, ctx.projection, ts, te,
-                    settings.path_method == PathMethod::Euler ? OdeMethod::Euler : OdeMethod::Rk4, settings.ode_steps);
-        layers.ode = &*ode;
+        plan.ode.emplace(scene, ctx.projection, seg.begin, seg.end,
+                         settings.path_method == PathMethod::Euler ? OdeMethod::Euler : OdeMethod::Rk4,
+                         settings.ode_steps);
+        layers.ode = &*plan.ode;
     }
     if (ctx.job.output.aov_motion) {  // motion vectors span the whole shutter
-        layers.motion[0] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, open);
-        if (both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, close);
+        layers.motion[0] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, ends.open);
+        if (ends.both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, ends.close);
     }
-    const MotionPlan plan = planMotion(scene, ctx.projection, ctx.grid, ts, te, layers, subframes,
-                                       settings.max_subframes, sweeping, ctx.backdrop);
-    totals.stats.capped_tiles += plan.capped_tiles;
-    totals.stats.measured_fragment_paths += plan.measured;
-    totals.stats.near_crossing_fragments += plan.near_crossings;
-    totals.stats.sweep_backdrop_tiles += plan.backdrop_tiles;
+    plan.motion = planMotion(scene, ctx.projection, ctx.grid, seg.begin, seg.end, layers, seg.subframes,
+                             settings.max_subframes, sweeping, ctx.backdrop);
+    totals.stats.capped_tiles += plan.motion.capped_tiles;
+    totals.stats.measured_fragment_paths += plan.motion.measured;
+    totals.stats.near_crossing_fragments += plan.motion.near_crossings;
+    totals.stats.sweep_backdrop_tiles += plan.motion.backdrop_tiles;
+    for (const SubframePlan& p : plan.motion.tiles) plan.intervals = std::max(plan.intervals, p.count);
+    if (sweeping) {
+        plan.positions = sweepPositions(scene, ctx.projection, layers, seg.begin, seg.end, plan.intervals,
+                                        settings.sweep_spacing, settings.max_subframes);
+        const double h = (seg.end - seg.begin) / plan.intervals;
+        for (int k = 0; k < plan.intervals; ++k)
+            plan.turns.push_back(intervalTurns(scene, ctx.projection, seg.begin + k * h, seg.begin + (k + 1) * h,
+                                               plan.positions[static_cast<std::size_t>(k)]));
+    }
+    totals.stats.seconds.motion_plan += secondsSince(stage);
+}
+
+// What the tiles of one segment write: their own pixels of the window directly (each tile owns them)
+// and, with sweep integration, what they spill into other tiles' pixels, kept per tile.
+struct TileOutputs {
+    WindowSums& sums;
+    std::vector<std::vector<Spill>>& spills;
+    tbb::enumerable_thread_specific<ReclipScratch>& scratches;
+};
+
+// One pixel's sums over a tile's subframes, in subframe order: bit-identical for any thread count.
+Spill subframeTotal(const std::vector<TileSums>& tile_sums, int x, int y) {
+    Spill sum;
+    for (const TileSums& s : tile_sums) {
+        if (!s.box.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
+        const std::size_t i = s.box.index(x, y);
+        sum.colour += s.colour[i];
+        sum.covered += s.covered[i];
+        sum.depth += s.depth[i];
+        sum.motion += s.motion[i];
+        if (s.track_objects) addShares(sum.objects, s.objects[i], 1.0);
+    }
+    return sum;
+}
+
+// Sweep: what a tile's subframes left in the window's pixels outside the tile, scaled by w.
+void collectSpills(const std::vector<TileSums>& tile_sums, const PixelBounds& tile, const PixelBounds& window,
+                   double w, std::vector<Spill>& spilled) {
+    PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
+    for (const TileSums& s : tile_sums) reached = reached.unite(s.box);
+    const PixelBounds seen = reached.intersect(window);
+    for (int y = seen.y0; y < seen.y1; ++y) {
+        for (int x = seen.x0; x < seen.x1; ++x) {
+            if (tile.contains(x, y)) continue;
+            Spill sum = subframeTotal(tile_sums, x, y);
+            if (sum.covered == 0.0) continue;
+            sum.out = window.index(x, y);
+            sum.colour *= w;
+            sum.covered *= w;
+            sum.depth *= w;
+            sum.motion *= w;
+            for (ObjectShare& o : sum.objects) o.coverage *= w;
+            spilled.push_back(std::move(sum));
+        }
+    }
+}
+
+// Steps 3-5 for one tile: per subframe propagate, re-clip and reduce; the tile adds weight x the average
+// of its subframes to its pixels. Where nothing moves (and no moving shadow can change the lighting
+// between the frames) the segment-start image is the answer. Returns the tile's re-clip count.
+int integrateTile(const ClippedContext& ctx, const SegmentSpec& seg, const SegmentEnds& ends, const SegmentPlan& plan,
+                  int index, TileOutputs& out, ReclipStats& stats) {
+    const Scene& scene = ctx.job.scene;
+    const RenderSettings& settings = ctx.job.render;
+    const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
+    const bool track_objects = ctx.job.output.cryptomatte.enabled;
+    const double ts = seg.begin, te = seg.end;
+    const PixelBounds tile = ctx.grid.tile(index);
+    const SubframePlan& tile_plan = plan.motion.tiles[static_cast<std::size_t>(index)];
+    const bool still_tile =
+        ends.still_scene || (tile_plan.max_sweep_pixels == 0.0 && seg.subframes == 0 && !settings.shadows);
+    const int n = still_tile ? 0 : tile_plan.count;
+    const PixelBounds film = scene.film.pixels();
+    const PixelBounds& window = ctx.window;
+    SweepInterval sweep;
+    if (sweeping && n > 0) {
+        sweep = sweepInterval(tile, tile_plan, n, film);
+        sweep.groups = plan.motion.groups;
+    }
+    const PixelBounds reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
+    if (!window.overlaps(reach)) return -1;
+    std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
+    for (TileSums& s : tile_sums) s.track_objects = track_objects;
+    std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
+    const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
+    const double half = 0.5 * (te - ts) / std::max(n, 1);
+    const TileReclip reclip{scene, ctx.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
+                            settings.audit};
+    tbb::parallel_for(0, n, [&](int k) {
+        const double t = times[static_cast<std::size_t>(k)];
+        const MotionSnapshot snapshot(scene, ctx.projection, t);
+        std::optional<MotionSnapshot> begin, end;
+        SweepInterval interval = sweep;
+        if (sweeping) {
+            begin.emplace(scene, ctx.projection, t - half);
+            end.emplace(scene, ctx.projection, t + half);
+            interval.begin = &*begin;
+            interval.end = &*end;
+            interval.positions = plan.positions[static_cast<std::size_t>(k)];
+            const IntervalTurns& turn = plan.turns[static_cast<std::size_t>(k)];
+            if (n == plan.intervals && !turn.at_positions.empty()) interval.turns = &turn;
+        }
+        reclipSubframe(reclip, {snapshot, (t - ts) / (te - ts), sweeping ? &interval : nullptr}, out.scratches.local(),
+                       tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
+    });
+    const double w = seg.weight / std::max(n, 1);
+    const PixelBounds mine = tile.intersect(window);
+    for (int y = mine.y0; y < mine.y1; ++y) {
+        for (int x = mine.x0; x < mine.x1; ++x) {
+            const std::size_t pixel_out = window.index(x, y);
+            if (still_tile) {
+                const std::size_t pixel = film.index(x, y);
+                out.sums.add(pixel_out, seg.weight, ends.still.colour[pixel], ends.still.covered[pixel],
+                             ends.still.depth[pixel], {}, sharesAt(ends.still, pixel));
+                continue;
+            }
+            const Spill sum = subframeTotal(tile_sums, x, y);
+            out.sums.add(pixel_out, w, sum.colour, sum.covered, sum.depth, sum.motion, &sum.objects);
+        }
+    }
+    if (sweeping && n > 0) collectSpills(tile_sums, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
+    for (const ReclipStats& s : sub_stats) stats.merge(s);
+    return n;
+}
+
+// The paper's method over one shutter segment: fragment sets at both ends, per-tile re-clips,
+// integration of each tile, then the merge in tile order; adds weight x (the segment's average) to `sums`.
+void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums& sums, SegmentTotals& totals) {
+    const SegmentEnds ends = buildSegmentEnds(ctx, seg, totals);
+    SegmentPlan plan;
+    planSegment(ctx, seg, ends, totals, plan);
+
     // With a backdrop the segment's front sums are kept apart until every spill is in.
     std::optional<WindowSums> front;
-    if (plan.backdrop_tiles > 0) {
-        front.emplace(sums.colour.size(), track_objects);
+    if (plan.motion.backdrop_tiles > 0) {
+        front.emplace(sums.colour.size(), ctx.job.output.cryptomatte.enabled);
         if (!totals.backdrop)
             totals.backdrop = renderBackdrop(ctx.job, ctx.backdrop, 0.5 * (ctx.t0 + ctx.t1), ctx.projection,
                                              ctx.grid, ctx.callbacks, totals.stats.backdrop.emplace());
     }
     WindowSums& target = front ? *front : sums;
 
-    // 3-5. Per tile and subframe: propagate, re-clip, reduce; tiles accumulate their subframes in order.
-    // Visibility and the subframe plan above stay global so a window's pixels are bit-identical to the
-    // same pixels of the whole film; only the tiles the window touches are resolved.
+    // Visibility and the plan above stay global so a window's pixels are bit-identical to the same pixels
+    // of the whole film; only the tiles the window touches are integrated.
+    const auto stage = Clock::now();
     std::atomic<bool> cancelled{false};
     std::atomic<long long> tiles_done{0};
     std::mutex merge_mutex;
-    const long long progress_total = static_cast<long long>(ctx.grid.count()) * segments;
-    const auto progress = [&] {
-        const long long done = ++tiles_done + static_cast<long long>(segment) * ctx.grid.count();
-        if (ctx.callbacks.progress) {
-            std::lock_guard lock(merge_mutex);
-            ctx.callbacks.progress(done, progress_total);
-        }
-    };
-    // Sweep integration: all moving tiles share the intervals (planMotion) and, per interval, the positions.
-    int intervals = 1;
-    for (const SubframePlan& p : plan.tiles) intervals = std::max(intervals, p.count);
-    const std::vector<int> positions =
-        sweeping ? sweepPositions(scene, ctx.projection, layers, ts, te, intervals, settings.sweep_spacing,
-                                  settings.max_subframes)
-                 : std::vector<int>{};
-    std::vector<IntervalTurns> turns;  // sweep: a turning camera's turns per interval
-    for (int k = 0; sweeping && k < intervals; ++k) {
-        const double h = (te - ts) / intervals;
-        turns.push_back(intervalTurns(scene, ctx.projection, ts + k * h, ts + (k + 1) * h, positions[static_cast<std::size_t>(k)]));
-    }
-    totals.stats.seconds.motion_plan += secondsSince(stage);
-    stage = Clock::now();
-    const PixelBounds& window = ctx.window;
-    const PixelBounds film = scene.film.pixels();
-    // Sweep integration: what a tile's fragments leave in other tiles' pixels, added after all tiles in
-    // tile order so the sums do not depend on which thread finished first.
+    const long long progress_total = static_cast<long long>(ctx.grid.count()) * static_cast<long long>(seg.bands.size());
+    const bool sweeping = ctx.job.render.time_integration == TimeIntegration::Sweep;
     std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.grid.count()) : 0);
     // Scratch buffers per thread, not per task: a fresh one per (tile, subframe) spent a fifth of the
     // render in page faults. Every use clears what it reads, and reclipSubframe starts no TBB work, so
     // a thread never holds its scratch across a steal.
     tbb::enumerable_thread_specific<ReclipScratch> scratches;
+    TileOutputs outputs{target, spills, scratches};
     tbb::parallel_for(0, ctx.grid.count(), [&](int index) {
         if (ctx.callbacks.cancel && ctx.callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
             return;
         }
-        const PixelBounds tile = ctx.grid.tile(index);
-        const SubframePlan& tile_plan = plan.tiles[static_cast<std::size_t>(index)];
-        const auto& refs = plan.refs[static_cast<std::size_t>(index)];
-        // Model no more than the tile needs: where nothing moves (and no moving shadow can change the
-        // lighting between the frames) the segment-start image is the answer.
-        const bool still_tile =
-            still_scene || (tile_plan.max_sweep_pixels == 0.0 && subframes == 0 && !settings.shadows);
-        const int n = still_tile ? 0 : tile_plan.count;
-        SweepInterval sweep;
-        if (sweeping && n > 0) {
-            sweep = sweepInterval(tile, tile_plan, n, film);
-            sweep.groups = plan.groups;
-        }
-        const PixelBounds reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
-        if (!window.overlaps(reach)) {
-            progress();
-            return;
-        }
-        std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
-        for (TileSums& s : tile_sums) s.track_objects = track_objects;
-        std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
-        const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
-        const double half = 0.5 * (te - ts) / std::max(n, 1);
-        const TileReclip reclip{scene, ctx.shader, layers, refs, tile, settings.audit};
-        tbb::parallel_for(0, n, [&](int k) {
-            const double t = times[static_cast<std::size_t>(k)];
-            const MotionSnapshot snapshot(scene, ctx.projection, t);
-            std::optional<MotionSnapshot> begin, end;
-            SweepInterval interval = sweep;
-            if (sweeping) {
-                begin.emplace(scene, ctx.projection, t - half);
-                end.emplace(scene, ctx.projection, t + half);
-                interval.begin = &*begin;
-                interval.end = &*end;
-                interval.positions = positions[static_cast<std::size_t>(k)];
-                const IntervalTurns& turn = turns[static_cast<std::size_t>(k)];
-                if (n == intervals && !turn.at_positions.empty()) interval.turns = &turn;
-            }
-            reclipSubframe(reclip, {snapshot, (t - ts) / (te - ts), sweeping ? &interval : nullptr}, scratches.local(),
-                           tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
-        });
-        const double w = weight / std::max(n, 1);
-        const auto total = [&](int x, int y) {  // fixed order: bit-identical for any thread count
-            Spill sum;
-            for (const TileSums& s : tile_sums) {
-                if (!s.box.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
-                const std::size_t i = s.box.index(x, y);
-                sum.colour += s.colour[i];
-                sum.covered += s.covered[i];
-                sum.depth += s.depth[i];
-                sum.motion += s.motion[i];
-                if (track_objects) addShares(sum.objects, s.objects[i], 1.0);
-            }
-            return sum;
-        };
-        const PixelBounds mine = tile.intersect(window);
-        for (int y = mine.y0; y < mine.y1; ++y) {
-            for (int x = mine.x0; x < mine.x1; ++x) {
-                const std::size_t out = window.index(x, y);
-                if (still_tile) {
-                    const std::size_t pixel = film.index(x, y);
-                    target.add(out, weight, still.colour[pixel], still.covered[pixel], still.depth[pixel], {},
-                               sharesAt(still, pixel));
-                    continue;
-                }
-                const Spill sum = total(x, y);
-                target.add(out, w, sum.colour, sum.covered, sum.depth, sum.motion, &sum.objects);
-            }
-        }
-        if (sweeping && n > 0) {
-            auto& mine = spills[static_cast<std::size_t>(index)];
-            PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
-            for (const TileSums& s : tile_sums)
-                reached = reached.unite(s.box);
-            const PixelBounds seen = reached.intersect(window);
-            for (int y = seen.y0; y < seen.y1; ++y) {
-                for (int x = seen.x0; x < seen.x1; ++x) {
-                    if (x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1) continue;
-                    Spill sum = total(x, y);
-                    if (sum.covered == 0.0) continue;
-                    sum.out = window.index(x, y);
-                    sum.colour *= w;
-                    sum.covered *= w;
-                    sum.depth *= w;
-                    sum.motion *= w;
-                    for (ObjectShare& o : sum.objects) o.coverage *= w;
-                    mine.push_back(std::move(sum));
-                }
-            }
-        }
-        {
-            std::lock_guard lock(merge_mutex);
-            for (const ReclipStats& s : sub_stats) totals.stats.reclip.merge(s);
+        ReclipStats stats;
+        const int n = integrateTile(ctx, seg, ends, plan, index, outputs, stats);
+        std::lock_guard lock(merge_mutex);
+        if (n >= 0) {
+            totals.stats.reclip.merge(stats);
             totals.stats.subframes_total += n;
-            totals.stats.still_tiles += still_tile ? 1 : 0;
+            totals.stats.still_tiles += n == 0 ? 1 : 0;
             totals.stats.subframes_max_per_tile = std::max<long long>(totals.stats.subframes_max_per_tile, n);
         }
-        progress();
+        const long long done = ++tiles_done + static_cast<long long>(seg.index) * ctx.grid.count();
+        if (ctx.callbacks.progress) ctx.callbacks.progress(done, progress_total);
     });
+    // Spills after all tiles, in tile order, so the sums do not depend on which thread finished first.
     for (const auto& tile_spills : spills) {
         for (const Spill& s : tile_spills) {
             target.add(s.out, 1.0, s.colour, s.covered, s.depth, s.motion, &s.objects);
             ++totals.stats.sweep_spilled_pixels;
         }
     }
-    if (front) compositeBackdrop(*front, *totals.backdrop, plan, ctx.grid, window, film, weight, sums);
+    if (front)
+        compositeBackdrop(*front, *totals.backdrop, plan.motion, ctx.grid, ctx.window, ctx.job.scene.film.pixels(),
+                          seg.weight, sums);
     totals.stats.seconds.tiles += secondsSince(stage);
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
+}
+
+}  // namespace
+
+namespace {
+
+// Shutter segments (one unless something turns far or is hidden at both ends of one), each rendered by
+// the paper's method and weighted by its length.
+std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, ClippedStats& stats,
+                                              std::vector<std::string>& warnings) {
+    const Scene& scene = ctx.job.scene;
+    const RenderSettings& settings = ctx.job.render;
+    const auto stage = Clock::now();
+    std::vector<ShutterSegment> segments = equalSegments(
+        ctx.t0, ctx.t1,
+        stats.both_frames ? shutterSegments(scene, ctx.t0, ctx.t1, settings.segments, settings.max_segments) : 1);
+    HiddenProbe probe;
+    int unsplit = 0;
+    if (stats.both_frames && settings.segments == 0 && visibilityCanChange(scene, ctx.t0, ctx.t1)) {
+        const auto hidden = [&](double a, double b) {
+            return hidesSomethingAtBothEnds(scene, ctx.embree, ctx.projection, a, b, probe);
+        };
+        segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
+    }
+    if (unsplit > 0)
+        warnings.push_back(std::to_string(unsplit) + " shutter segments still hide a surface at both ends at max_segments (" +
+                           std::to_string(settings.max_segments) + "); it may show as a hole");
+    stats.segments = static_cast<long long>(segments.size());
+    stats.hidden_probe_samples = probe.samples;
+    stats.hidden_probe_hits = probe.hidden;
+    stats.seconds.hidden_probe = secondsSince(stage);
+    return segments;
+}
+
+// Renders every segment into `sums`. A fixed subframe count is shared out so the shutter has that many
+// in total.
+void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>& segments, WindowSums& sums,
+                    SegmentTotals& totals) {
+    const Scene& scene = ctx.job.scene;
+    const int fixed_total = ctx.job.render.subframes;
+    const auto stage = Clock::now();
+    std::vector<int> bands;
+    for (const ShutterSegment& s : segments)
+        bands.push_back(guardBandPixels(scene, ctx.projection, s.begin, s.end,
+                                        std::max(scene.film.width, scene.film.height) / 2));
+    // A fixed count's share before a fraction of the shutter (1e-9: sums of 1/n reach whole numbers).
+    const auto before = [&](double fraction) { return static_cast<int>(std::floor(fixed_total * fraction + 1e-9)); };
+    double share = 0.0;  // the shutter's fraction before the segment
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+        const int fixed = fixed_total > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
+        share += segments[s].weight;
+        renderSegment(ctx, {segments[s].begin, segments[s].end, segments[s].weight, fixed, static_cast<int>(s), bands},
+                      sums, totals);
+    }
+    totals.stats.seconds.segments = secondsSince(stage);
+}
+
+// The window's pixels from the shutter's sums; depth from the mid-shutter set when there is one.
+void writeWindow(const ClippedContext& ctx, WindowSums& sums, const std::optional<PixelSums>& mid, RenderResult& result) {
+    const Scene& scene = ctx.job.scene;
+    result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(ctx.job.output));
+    ImageWriter writer(result.image);
+    for (int y = ctx.window.y0; y < ctx.window.y1; ++y) {
+        for (int x = ctx.window.x0; x < ctx.window.x1; ++x) {
+            const std::size_t i = ctx.window.index(x, y);
+            const std::size_t p = scene.film.pixels().index(x, y);
+            const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(sums.depth[i], sums.covered[i]);
+            writer.write(result.image.index(x, y), sums.colour[i], sums.covered[i], z, sums.motion[i]);
+            if (sums.objects.empty()) continue;
+            const double scale = overCoverScale(sums.covered[i]);
+            for (ObjectShare& o : sums.objects[i]) o.coverage *= scale;
+        }
+    }
+    result.objects.pixels = std::move(sums.objects);  // window-local row-major, as the image
 }
 
 }  // namespace
@@ -455,7 +580,6 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const auto start = Clock::now();
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.render;
-    const bool both_frames = settings.method != Method::Frame0Only;
     const double t0 = frame + job.shutter.open;
     const double t1 = frame + job.shutter.close;
 
@@ -479,69 +603,24 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     RenderResult result;
     SegmentTotals totals;
     ClippedStats& stats = totals.stats;
+    stats.both_frames = settings.method != Method::Frame0Only;
+    stats.sweep = settings.time_integration == TimeIntegration::Sweep;
+    stats.ode = settings.path_method != PathMethod::Exact;
+    stats.tiles = ctx.grid.count();
+    stats.triangles = embree.stats().triangles;
+    stats.backdrop_behind_everything = backdrop.behind_everything;
     stats.seconds.scene_build = secondsSince(start);
 
-    // Shutter segments (one unless something turns far or is hidden at both ends of one), each rendered by
-    // the paper's method and weighted by its length. A fixed subframe count is shared out so the shutter
-    // has that many in total.
-    auto stage = Clock::now();
-    std::vector<ShutterSegment> segments =
-        equalSegments(t0, t1, both_frames ? shutterSegments(scene, t0, t1, settings.segments, settings.max_segments) : 1);
-    HiddenProbe probe;
-    int unsplit = 0;
-    if (both_frames && settings.segments == 0 && visibilityCanChange(scene, t0, t1)) {
-        const auto hidden = [&](double a, double b) {
-            return hidesSomethingAtBothEnds(scene, embree, ctx.projection, a, b, probe);
-        };
-        segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
-    }
-    stats.seconds.hidden_probe = secondsSince(stage);
-    stage = Clock::now();
+    const std::vector<ShutterSegment> segments = shutterSegmentsOf(ctx, stats, result.stats.warnings);
     WindowSums sums(ctx.window.area(), job.output.cryptomatte.enabled);
-    std::vector<int> bands;
-    for (const ShutterSegment& s : segments)
-        bands.push_back(guardBandPixels(scene, ctx.projection, s.begin, s.end,
-                                        std::max(scene.film.width, scene.film.height) / 2));
-    // A fixed count's share before a fraction of the shutter (1e-9: sums of 1/n reach whole numbers).
-    const auto before = [&](double fraction) { return static_cast<int>(std::floor(settings.subframes * fraction + 1e-9)); };
-    double share = 0.0;  // the shutter's fraction before the segment
-    for (std::size_t s = 0; s < segments.size(); ++s) {
-        const int fixed = settings.subframes > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
-        share += segments[s].weight;
-        renderSegment(ctx, segments[s].begin, segments[s].end, fixed, segments[s].weight, static_cast<int>(s), bands,
-                      sums, totals);
-    }
-    stats.seconds.segments = secondsSince(stage);
+    renderSegments(ctx, segments, sums, totals);
     FrameFragmentStats mid_stats;
     std::optional<EmbreeScene> whole;  // the mid-shutter depth sees the backdrop too
     if (backdrop.behind_everything && job.output.aov_depth) whole.emplace(device, scene, t0, t1);
     const std::optional<PixelSums> mid =
         midShutterDepth(job, whole ? *whole : embree, adjacency, shader, t0, t1, callbacks, mid_stats);
+    writeWindow(ctx, sums, mid, result);
 
-    result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(job.output));
-    ImageWriter writer(result.image);
-    for (int y = ctx.window.y0; y < ctx.window.y1; ++y) {
-        for (int x = ctx.window.x0; x < ctx.window.x1; ++x) {
-            const std::size_t i = ctx.window.index(x, y);
-            const std::size_t p = scene.film.pixels().index(x, y);
-            const float z = mid ? meanDepth(mid->depth[p], mid->covered[p]) : meanDepth(sums.depth[i], sums.covered[i]);
-            writer.write(result.image.index(x, y), sums.colour[i], sums.covered[i], z, sums.motion[i]);
-            if (sums.objects.empty()) continue;
-            const double scale = overCoverScale(sums.covered[i]);
-            for (ObjectShare& o : sums.objects[i]) o.coverage *= scale;
-        }
-    }
-    result.objects.pixels = std::move(sums.objects);  // window-local row-major, as the image
-
-    stats.both_frames = both_frames;
-    stats.sweep = settings.time_integration == TimeIntegration::Sweep;
-    stats.ode = settings.path_method != PathMethod::Exact;
-    stats.tiles = ctx.grid.count();
-    stats.triangles = embree.stats().triangles;
-    stats.segments = static_cast<long long>(segments.size());
-    stats.hidden_probe_samples = probe.samples;
-    stats.hidden_probe_hits = probe.hidden;
-    stats.backdrop_behind_everything = backdrop.behind_everything;
     if (mid) stats.mid = mid_stats;
     if (settings.audit) {
         AuditStats audit = stats.open.audit;
@@ -552,10 +631,6 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         checkAudit(audit);
         stats.audit = audit;
     }
-    if (unsplit > 0)
-        result.stats.warnings.push_back(std::to_string(unsplit) +
-                                        " shutter segments still hide a surface at both ends at max_segments (" +
-                                        std::to_string(settings.max_segments) + "); it may show as a hole");
     if (stats.capped_tiles > 0)
         result.stats.warnings.push_back(std::to_string(stats.capped_tiles) + " tiles needed more than max_subframes (" +
                                         std::to_string(settings.max_subframes) + "); motion there may strobe");
