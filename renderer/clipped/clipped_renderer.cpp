@@ -464,9 +464,8 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     const long long progress_total = static_cast<long long>(ctx.grid.count()) * static_cast<long long>(seg.bands.size());
     const bool sweeping = ctx.job.render.time_integration == TimeIntegration::Sweep;
     std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.grid.count()) : 0);
-    // Scratch buffers per thread, not per task: a fresh one per (tile, subframe) spent a fifth of the
-    // render in page faults. Every use clears what it reads, and reclipSubframe starts no TBB work, so
-    // a thread never holds its scratch across a steal.
+    // Scratch buffers per thread, not per task (allocating them is page faults). Every use clears what it
+    // reads, and reclipSubframe starts no TBB work, so a thread never holds its scratch across a steal.
     tbb::enumerable_thread_specific<ReclipScratch> scratches;
     TileOutputs outputs{target, spills, scratches};
     tbb::parallel_for(0, ctx.grid.count(), [&](int index) {

@@ -193,20 +193,17 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             p.count = subframeCount(p.max_sweep_pixels, max_subframes, &p.capped);
         } else {
             // Sweep integration moves each fragment along its own path between re-clips, so what one
-            // surface does smoothly (a pan, a roll, a dolly) needs no re-clip. What is left to subframes is
-            // how far different objects move relative to each other (what one hides of another changes:
-            // at most a pixel per subframe, as eq. 24), and how far a path leaves the parabola a sweep
-            // follows (measured for one interval over the segment: the path's distance from the parabola
-            // through its positions at the segment's ends and middle, a third-order error that for smooth
-            // paths falls as the cube of the count; the chord's deviation, used before, is second-order
-            // and asked for 4 re-clips on a pan that one serves as well). Self-occlusion inside one object is
-            // left to curvature, deformation (below) and shutter segments.
+            // surface does smoothly (a pan, a roll, a dolly) needs no re-clip. Re-clips follow what is
+            // left: how far surfaces of different motion groups move relative to each other (what one
+            // hides of another: at most a pixel per re-clip, as eq. 24), and how far a path leaves the
+            // parabola a sweep follows (its distance from the parabola through its positions at the
+            // segment's ends and middle: third order, falling as the cube of the count).
+            // Self-occlusion inside one object is left to curvature, deformation and shutter segments.
             constexpr double kChordTolerance = 0.1;  // px
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
-            // surface is (SweepPath), so a surface that turns or shears under them (a roll) is followed to
-            // within FragmentMotion::unstretched_error with one interval, that / n with n; keep it at
-            // kChordTolerance, as the paths. Each fragment triangle's own open-to-close map gives it (one fit over an
-            // object's triangles near a tile mixed its faces, and was ill-posed where they lay in a line).
+            // surface is (SweepPath); a surface that turns or shears under them (a roll) is followed to
+            // within FragmentMotion::unstretched_error / n with n intervals, kept at kChordTolerance.
+            // Each fragment triangle's own open-to-close map gives it.
             double deviation = 0.0, unstretched = 0.0;
             for (const FragmentRef& ref : refs) {
                 const FragmentMotion& fm = motion[ref.layer][ref.index];

@@ -219,8 +219,7 @@ void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector
 }
 
 // Sweep: adds the tile's swept polygons into `out`, sized to the pixels their footprints reach (within
-// sweep.box, which bounds them). Sizing it by sweep.box alone allocated and cleared up to a film's worth
-// of pixels per tile and subframe when a fast fragment made the bound large (a dolly with few re-clips).
+// sweep.box, which bounds them but can be a film's worth of pixels when a fast fragment makes it large).
 void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, const ReclipScratch& scratch, TileSums& out) {
     PixelBounds box = tile;
     for (const SweptPolygon& p : scratch.swept) {

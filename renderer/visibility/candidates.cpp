@@ -35,10 +35,8 @@ void sortUnique(std::vector<std::uint64_t>& v) {
 }
 
 // The clipper's cost per binned triangle before its pixels, in pixel pieces (setup, binning, the
-// sort by depth); and what one ray costs in pixel pieces. Fitted at 1280x720 (docs/history/performance-runs.md,
-// "Candidate rays where they pay"): the propeller's frame sets took 1.54 s with rays in every tile
-// and 0.71 s with none though rays cut its candidates from 4428 to 348, while the dense sphere's
-// (1.1M triangles, up to 34 per pixel) were no faster without them.
+// sort by depth); and what one ray costs in pixel pieces. Fitted at 1280x720 on the propeller and the
+// dense sphere (the fit: docs/history/performance-runs.md, "Candidate rays where they pay").
 constexpr double kTriangleSetupPixels = 4.0, kRayPixels = 1.25;
 
 // Rays sample a grid of spacing 1/n. A disk as wide as the grid cell's diagonal holds a sample
