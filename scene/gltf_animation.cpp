@@ -27,7 +27,7 @@ void writeQuat(const glm::dquat& q, double* out) {
 
 }  // namespace
 
-glm::dmat4 trsMatrix(const NodeTrs& trs) {
+glm::dmat4 trsMatrix(const RigidTransform& trs) {
     return glm::translate(glm::dmat4(1.0), trs.translate) * glm::mat4_cast(trs.rotate) *
            glm::scale(glm::dmat4(1.0), trs.scale);
 }
@@ -77,7 +77,7 @@ void Track::eval(double t, double* out) const {
 
 glm::dmat4 AnimatedNode::local(double t) const {
     if (has_matrix) return matrix;
-    NodeTrs trs = rest;
+    RigidTransform trs = rest;
     double v[4];
     if (translation) {
         translation->eval(t, v);

@@ -10,14 +10,8 @@
 
 namespace clipblur {
 
-// A glTF node's local translation, rotation and scale.
-struct NodeTrs {
-    glm::dvec3 translate{0.0};
-    glm::dquat rotate{1.0, 0.0, 0.0, 0.0};
-    glm::dvec3 scale{1.0};
-};
-
-glm::dmat4 trsMatrix(const NodeTrs& trs);
+// A glTF node's local translation, rotation and scale (T R S) as a matrix.
+glm::dmat4 trsMatrix(const RigidTransform& trs);
 
 enum class Interpolation { Linear, Step, CubicSpline };
 
@@ -37,7 +31,7 @@ struct Track {
 
 // A node's place in the hierarchy: its rest pose or matrix and the tracks that animate it.
 struct AnimatedNode {
-    NodeTrs rest;
+    RigidTransform rest;
     glm::dmat4 matrix{1.0};
     bool has_matrix = false;  // glTF forbids animating a node given by a matrix
     const Track* translation = nullptr;

@@ -571,13 +571,13 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     const tinygltf::Node& n = model_.nodes[node];
     const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(n.mesh)];
     const std::string where = pointer("nodes", node);
+    Object object;
+    object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
+    object.loc = request_.ref;
+    object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
+    object.mesh.triangles = g.triangles;
     if (n.skin >= 0) {
         // A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints.
-        Object object;
-        object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
-        object.loc = request_.ref;
-        object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
-        object.mesh.triangles = g.triangles;
         object.mesh.positions = g.positions;
         followDeformation(object, skinSource(node, mesh.primitives[prim], g), where + "/skin");
         out_.objects.push_back(std::move(object));
@@ -588,12 +588,6 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     for (glm::dvec3& p : g.positions) p = glm::dvec3(s.tail * glm::dvec4(p, 1.0));
     for (auto& target : g.targets)
         for (glm::dvec3& d : target) d = glm::dvec3(s.tail * glm::dvec4(d, 0.0));
-
-    Object object;
-    object.name = uniqueName(mesh.primitives.size() > 1 ? n.name + "/" + std::to_string(prim) : n.name);
-    object.loc = request_.ref;
-    object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
-    object.mesh.triangles = g.triangles;
     object.mesh.positions = g.positions;
     const std::vector<double> rest = restWeights(node, g.targets.size());
     for (std::size_t t = 0; t < g.targets.size(); ++t)
