@@ -84,7 +84,8 @@ std::optional<PixelSums> midShutterDepth(const RenderJob& job, const EmbreeScene
     sums.resize(scene.film.pixels().area());
     buildFrameFragments(scene, embree, adjacency, Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees),
                         TileGrid(scene.film.width, scene.film.height, job.render.tile_size), 0.5 * (t0 + t1), shader,
-                        {job.render.visibility_rays, false, job.render.audit}, callbacks, &sums, stats);
+                        {.rays_per_side = job.render.visibility_rays, .keep_triangles = false, .audit = job.render.audit},
+                        callbacks, &sums, stats);
     return sums;
 }
 
@@ -243,8 +244,11 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
     const TileGrid grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band, settings.tile_size);
-    const FrameFragmentOptions options{settings.visibility_rays, !ends.still_scene, settings.audit,
-                                       ctx.backdrop.behind_everything ? &ctx.backdrop.objects : nullptr};
+    const FrameFragmentOptions options{
+        .rays_per_side = settings.visibility_rays,
+        .keep_triangles = !ends.still_scene,
+        .audit = settings.audit,
+        .leave_out = ctx.backdrop.behind_everything ? &ctx.backdrop.objects : nullptr};
     const auto stage = Clock::now();
     const std::size_t film_pixels = scene.film.pixels().area();
     if (totals.carried) {
@@ -660,7 +664,8 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
         PixelSums sums;
         sums.resize(pixels, track_objects);
         buildFrameFragments(scene, embree, adjacency, projection, grid, t, shader,
-                            {settings.visibility_rays, false, settings.audit}, callbacks, &sums, frame_stats);
+                            {.rays_per_side = settings.visibility_rays, .keep_triangles = false, .audit = settings.audit},
+                            callbacks, &sums, frame_stats);
         for (std::size_t p = 0; p < pixels; ++p) {
             total.colour[p] += sums.colour[p];
             total.covered[p] += sums.covered[p];

@@ -81,7 +81,8 @@ PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double 
     PixelSums sums;
     sums.resize(static_cast<std::size_t>(still.film.width) * still.film.height, job.output.cryptomatte.enabled);
     buildFrameFragments(still, embree, adjacency, projection, grid, time, shader,
-                        {job.render.visibility_rays, false, job.render.audit}, callbacks, &sums, stats);
+                        {.rays_per_side = job.render.visibility_rays, .keep_triangles = false, .audit = job.render.audit},
+                        callbacks, &sums, stats);
     // The mapping keeps object order, so each pixel's shares stay sorted.
     for (ObjectShares& shares : sums.objects)
         for (ObjectShare& s : shares) s.object = original[static_cast<std::size_t>(s.object)];
