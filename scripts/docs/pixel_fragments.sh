@@ -3,9 +3,11 @@
 # shutter close (f = 1) and re-clipped at f = 1/2, for hand-written data: a still wall behind the whole
 # pixel and a front triangle (-0.5,-0.5) (1.5,-0.5) (-0.5,1.5) that slides 0.6 px right over the shutter.
 # Raster coordinates, pixel [0,1)^2, y down. The pieces below are that geometry clipped by hand; areas:
-# open front 0.5, wall 0.5; close front 0.82, wall 0.1 + 0.08; at f = 1/2 the front (x + y < 1.3) is
-# covered by both frames' copies (mixed 1 - f, f), the wall's visible corner by the open set's wall piece
-# (x + y >= 1) everywhere and by the close set's (x + y >= 1.6) only in its tip.
+# open front 0.5, wall 0.5; close front 0.82, wall 0.1 + 0.08. The third panel shows regions, not pieces:
+# at f = 1/2 both sets' fragments (with those of neighbouring pixels, which move in) are propagated and
+# re-clipped; the front (x + y < 1.3) is covered by both frames' copies (mixed 1 - f, f), the wall's
+# visible corner by the open set's wall (x + y >= 1) everywhere and by the close set's (x + y >= 1.6)
+# only in its tip; the resolver cuts these regions further along the fragments' edges.
 set -euo pipefail
 source "$(dirname "$0")/terminal.sh"
 gnuplot <<GP
@@ -106,7 +108,7 @@ set arrow 2 from 1.08,1.12 to 0.92,0.9 lw 1 front
 plot \$close_front with filledcurves closed lc rgb "#3a74c4", \
      \$close_wall with filledcurves closed lc rgb "#c8a46a", \
      \$tri1 with lines dt 2 lc rgb "#3a74c4", \$pixel with lines lw 2 lc rgb "black"
-set title "re-clip at f = 1/2: union of both sets"
+set title "re-clip at f = 1/2: who covers what"
 unset arrow
 set label 1 "front: open and\\nclose copies mixed" at 0.05,0.3 front
 set label 2 "wall: open set only" at -0.25,1.22 front
