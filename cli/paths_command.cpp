@@ -47,8 +47,7 @@ std::vector<glm::dvec2> samplePath(const PathsOptions& o, const VertexPath& path
             if (o.method == "adaptive")
                 y = integrateAdaptive(ode, f_prev, y, f, o.tolerance).y;
             else
-                y = integrateFixed(ode, o.method == "euler" ? OdeMethod::Euler : OdeMethod::Rk4, f_prev, y, f,
-                                   per_interval);
+                y = integrateFixed(ode, {o.method == "euler" ? OdeMethod::Euler : OdeMethod::Rk4, per_interval}, f_prev, y, f);
         }
         out.push_back({y.x, y.y});
     }
@@ -84,7 +83,7 @@ int printConvergence(const PathsOptions& o) {
                 for (double x : grid)
                     for (double y : grid) {
                         const VertexOde ode(VertexPath(camera, c.vertexStart(x, y), c.vertexEnd(x, y)));
-                        const glm::dvec3 end = integrateFixed(ode, method, 0.0, ode.exactState(0.0), 1.0, steps);
+                        const glm::dvec3 end = integrateFixed(ode, {method, steps}, 0.0, ode.exactState(0.0), 1.0);
                         const glm::dvec3 exact = ode.exactState(1.0);
                         worst = std::max(worst, std::hypot(end.x - exact.x, end.y - exact.y));
                     }

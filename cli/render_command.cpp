@@ -179,7 +179,7 @@ void checkFrameFiles(const std::vector<FrameFiles>& frames, std::vector<std::fil
 // (writeFrame), so a complete image means they are there too.
 bool frameIsDone(const RenderJob& job, const FrameFiles& files, const std::optional<TileShard>& shard) {
     const int w = job.scene.film.width, h = job.scene.film.height;
-    if (shard) return shardIsComplete(files.image, w, h, *shard, job.config_hash);
+    if (shard) return shardIsComplete(files.image, {.width = w, .height = h, .shard = *shard, .config_hash = job.config_hash});
     return checkImage(files.image, ImageExpectation{w, h, PixelBounds::sized(0, 0, w, h), job.config_hash, {}}).complete;
 }
 

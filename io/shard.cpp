@@ -117,15 +117,13 @@ ImageCheck checkImage(const fs::path& path, const ImageExpectation& expected) {
     return {true, {}};
 }
 
-bool shardIsComplete(const fs::path& path, int width, int height, TileShard shard, const std::string& configHash,
-                     const std::vector<std::string>& channels) {
-    ImageExpectation expected;
-    expected.width = width;
-    expected.height = height;
-    expected.window = shardWindow(width, height, shard);
-    expected.config_hash = configHash;
-    expected.channels = channels;
-    return checkImage(path, expected).complete;
+bool shardIsComplete(const fs::path& path, const ShardExpectation& shard) {
+    return checkImage(path, {.width = shard.width,
+                             .height = shard.height,
+                             .window = shardWindow(shard.width, shard.height, shard.shard),
+                             .config_hash = shard.config_hash,
+                             .channels = shard.channels})
+        .complete;
 }
 
 }  // namespace clipblur

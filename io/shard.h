@@ -67,8 +67,14 @@ struct ImageCheck {
 // that every pixel reads back; a truncated or half-written file is reported incomplete, never thrown.
 ImageCheck checkImage(const std::filesystem::path& path, const ImageExpectation& expected);
 
-// checkImage for shard `shard` of a width x height frame.
-bool shardIsComplete(const std::filesystem::path& path, int width, int height, TileShard shard,
-                     const std::string& configHash, const std::vector<std::string>& channels = {});
+// Shard `shard` of a width x height frame, as checkImage expects it (hash and channels empty: not checked).
+struct ShardExpectation {
+    int width = 0;
+    int height = 0;
+    TileShard shard{};
+    std::string config_hash{};
+    std::vector<std::string> channels{};
+};
+bool shardIsComplete(const std::filesystem::path& path, const ShardExpectation& expected);
 
 }  // namespace clipblur

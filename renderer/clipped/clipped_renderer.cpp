@@ -75,24 +75,23 @@ float meanDepth(double depth_sum, double covered) {
 // The depth AOV is the depth of what is seen at mid-shutter, area-weighted over the pixel's covered part
 // (what a compositor pairs with motion vectors centred on the frame), so it needs the visibility of a
 // still frame at that time: nullopt when no depth is asked for or nothing moves (then every time has it).
-std::optional<PixelSums> midShutterDepth(const RenderJob& job, const EmbreeScene& embree, const MeshAdjacency& adjacency,
-                                         const Shader& shader, double t0, double t1, const RenderCallbacks& callbacks,
-                                         FrameFragmentStats& stats) {
-    const Scene& scene = job.scene;
-    if (!job.output.aov_depth || sceneIsStill(scene, t0, t1)) return std::nullopt;
+std::optional<PixelSums> midShutterDepth(const RenderJob& job, const FrameSetup& frame, FrameFragmentStats& stats) {
+    if (!job.output.aov_depth || frame.motion.shutter().still()) return std::nullopt;
     PixelSums sums;
-    sums.resize(scene.film.pixels().area());
-    buildFrameFragments(scene, embree, adjacency, Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees),
-                        TileGrid(scene.film.width, scene.film.height, job.render.tile_size), 0.5 * (t0 + t1), shader,
-                        {.rays_per_side = job.render.visibility_rays, .keep_triangles = false, .audit = job.render.audit},
-                        callbacks, &sums, stats);
+    sums.resize(job.scene.film.pixels().area());
+    buildFrameFragments(frame,
+                        {.time = 0.5 * (frame.motion.t0() + frame.motion.t1()),
+                         .rays_per_side = job.render.visibility_rays,
+                         .keep_triangles = false,
+                         .audit = job.render.audit},
+                        &sums, stats);
     return sums;
 }
 
 // Per-frame motion vectors of fragment triangles (centroid, raster, shutter open to close).
-std::vector<glm::vec2> fragmentMotion(const Scene& scene, const Projection& projection, double t0, double t1,
-                                      const std::vector<FragmentTriangle>& triangles) {
-    const MotionSnapshot open(scene, projection, t0), close(scene, projection, t1);
+std::vector<glm::vec2> fragmentMotion(const FrameSetup& frame, const std::vector<FragmentTriangle>& triangles) {
+    const Scene& scene = frame.scene();
+    const MotionSnapshot open(scene, frame.projection, frame.motion.t0()), close(scene, frame.projection, frame.motion.t1());
     std::vector<glm::vec2> motion(triangles.size());
     tbb::parallel_for(std::size_t(0), triangles.size(), [&](std::size_t i) {
         const FragmentTriangle& t = triangles[i];
@@ -111,6 +110,15 @@ void checkAudit(const AuditStats& audit) {
                                           " invariant violations; " + audit.first_violation);
 }
 
+// One pixel's sums from one tile: to the window pixel `out` when it is another tile's pixel.
+struct Spill {
+    std::size_t out = 0;
+    glm::dvec3 colour{0.0};
+    double covered = 0.0, depth = 0.0;
+    glm::dvec2 motion{0.0};
+    ObjectShares objects;  // ID mattes only
+};
+
 // Per-pixel sums over the render window (window-local, row-major).
 struct WindowSums {
     std::vector<glm::dvec3> colour;
@@ -122,57 +130,71 @@ struct WindowSums {
     WindowSums(std::size_t pixels, bool with_objects)
         : colour(pixels), covered(pixels), depth(pixels), motion(pixels), objects(with_objects ? pixels : 0) {}
 
-    // Adds scale x one pixel's sums to pixel i; `shares` (that pixel's per-object areas) when tracked.
-    void add(std::size_t i, double scale, const glm::dvec3& c, double cov, double d, const glm::dvec2& m = {},
-             const ObjectShares* shares = nullptr) {
-        colour[i] += scale * c;
-        covered[i] += scale * cov;
-        depth[i] += scale * d;
-        motion[i] += scale * m;
-        if (shares && !objects.empty()) addShares(objects[i], *shares, scale);
+    // Adds scale x one pixel's sums to pixel i, with its per-object areas when they are tracked.
+    void add(std::size_t i, double scale, const Spill& s) {
+        colour[i] += scale * s.colour;
+        covered[i] += scale * s.covered;
+        depth[i] += scale * s.depth;
+        motion[i] += scale * s.motion;
+        if (!objects.empty()) addShares(objects[i], s.objects, scale);
+    }
+    // Adds scale x pixel p of a still image (no motion) to pixel i.
+    void addStill(std::size_t i, double scale, const PixelSums& still, std::size_t p) {
+        colour[i] += scale * still.colour[p];
+        covered[i] += scale * still.covered[p];
+        depth[i] += scale * still.depth[p];
+        motion[i] += scale * glm::dvec2(0.0);
+        if (!objects.empty() && !still.objects.empty()) addShares(objects[i], still.objects[p], scale);
+    }
+    // Adds pixel i of `other` (the same window) to pixel i.
+    void addPixel(std::size_t i, const WindowSums& other) {
+        colour[i] += other.colour[i];
+        covered[i] += other.covered[i];
+        depth[i] += other.depth[i];
+        motion[i] += other.motion[i];
+        if (!objects.empty() && !other.objects.empty()) addShares(objects[i], other.objects[i], 1.0);
     }
 };
 
-// Pixel p's per-object areas in `sums`, or null when they are not tracked.
-const ObjectShares* sharesAt(const PixelSums& sums, std::size_t p) {
-    return sums.objects.empty() ? nullptr : &sums.objects[p];
-}
+// What every shutter segment shares: the job, the frame (its motion, Embree and shading state) and the
+// output layout.
+struct ClippedContext {
+    const RenderJob& job;
+    const FrameSetup& frame;
+    PixelBounds window;
+    const Backdrop& backdrop;  // findBackdrop: empty when no backdrop can exist
+};
 
 // A segment with a still backdrop (MotionPlan::backdrop): what moves in front covers a backdrop tile's
 // pixel for the fraction of the segment its swept coverage gives, so the pixel sees front + (1 - that) x
 // backdrop. Exact where the backdrop is uniform over the part of the pixel the front crosses; an edge of
 // the backdrop under a moving edge in the same pixel is where it is not. `front` carries the segment's
 // weight; the backdrop image (film pixels) is the same for every segment.
-void compositeBackdrop(const WindowSums& front, const PixelSums& backdrop, const MotionPlan& plan,
-                       const TileGrid& grid, const PixelBounds& window, const PixelBounds& film, double weight,
-                       WindowSums& sums) {
+struct FrontOverBackdrop {
+    const WindowSums& front;
+    const PixelSums& backdrop;
+    const MotionPlan& plan;
+    double weight = 1.0;  // the segment's
+};
+void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layers, WindowSums& sums) {
+    const TileGrid& grid = ctx.frame.grid;
+    const PixelBounds& window = ctx.window;
+    const PixelBounds film = ctx.job.scene.film.pixels();
+    const WindowSums& front = layers.front;
+    const PixelSums& backdrop = layers.backdrop;
+    const double weight = layers.weight;
     const int size = grid.tileSize();
     for (int y = window.y0; y < window.y1; ++y) {
         for (int x = window.x0; x < window.x1; ++x) {
             const std::size_t i = window.index(x, y);
-            sums.add(i, 1.0, front.colour[i], front.covered[i], front.depth[i], front.motion[i],
-                     front.objects.empty() ? nullptr : &front.objects[i]);
-            if (!plan.backdrop[static_cast<std::size_t>((y / size) * grid.columns() + x / size)]) continue;
+            sums.addPixel(i, front);
+            if (!layers.plan.backdrop[static_cast<std::size_t>((y / size) * grid.columns() + x / size)]) continue;
             const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
             const std::size_t p = film.index(x, y);
-            sums.add(i, seen, backdrop.colour[p], backdrop.covered[p], backdrop.depth[p], {}, sharesAt(backdrop, p));
+            sums.addStill(i, seen, backdrop, p);
         }
     }
 }
-
-// What every shutter segment shares: the scene, its Embree and shading state and the output layout.
-struct ClippedContext {
-    const RenderJob& job;
-    const EmbreeScene& embree;
-    const Shader& shader;
-    const MeshAdjacency& adjacency;
-    Projection projection;
-    TileGrid grid;
-    PixelBounds window;
-    double t0, t1;  // the whole shutter
-    const RenderCallbacks& callbacks;
-    const Backdrop& backdrop;  // findBackdrop: empty when no backdrop can exist
-};
 
 // What carries from one shutter segment to the next: the frame's stats, the backdrop image and the set
 // the next segment opens with.
@@ -181,15 +203,6 @@ struct SegmentTotals {
     std::optional<PixelSums> backdrop;  // the still backdrop's image, made when a segment first needs it
     // The last segment's closing set with its still image: the next segment's opening set, at the same time.
     std::optional<std::pair<std::vector<FragmentTriangle>, PixelSums>> carried;
-};
-
-// One pixel's sums from one tile: to the window pixel `out` when it is another tile's pixel.
-struct Spill {
-    std::size_t out = 0;
-    glm::dvec3 colour{0.0};
-    double covered = 0.0, depth = 0.0;
-    glm::dvec2 motion{0.0};
-    ObjectShares objects;  // ID mattes only
 };
 
 // The sweep interval layout of a moving tile with n subframes: its fragments move at most reach pixels
@@ -210,9 +223,10 @@ SweepInterval sweepInterval(const PixelBounds& tile, const SubframePlan& plan, i
     return s;
 }
 
-// One shutter segment [begin, end] of the frame, its share of the shutter, and every segment's guard band.
+// One shutter segment of the frame (what moves over it), its share of the shutter, and every segment's
+// guard band.
 struct SegmentSpec {
-    double begin = 0.0, end = 0.0;
+    const MotionWindow& window;
     double weight = 1.0;
     int subframes = 0;  // > 0: this segment's fixed re-clip count
     int index = 0;
@@ -237,18 +251,21 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     SegmentEnds ends;
     // Model no more than the scene needs: when nothing moves (and the subframe count is automatic) the
     // segment-start image is the answer, with no fragment triangles kept, no closing set and no subframes.
-    ends.still_scene = seg.subframes == 0 && sceneIsStill(scene, seg.begin, seg.end);
+    ends.still_scene = seg.subframes == 0 && seg.window.still();
     ends.both_frames = settings.method != Method::Frame0Only && !ends.still_scene;
     const bool carry = ends.both_frames && seg.index + 1 < static_cast<int>(seg.bands.size());
     int band = seg.bands[static_cast<std::size_t>(seg.index)];
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
     const TileGrid grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band, settings.tile_size);
-    const FrameFragmentOptions options{
-        .rays_per_side = settings.visibility_rays,
-        .keep_triangles = !ends.still_scene,
-        .audit = settings.audit,
-        .leave_out = ctx.backdrop.behind_everything ? &ctx.backdrop.objects : nullptr};
+    const auto request = [&](double time) {
+        return FrameFragmentRequest{.time = time,
+                                    .grid = &grid,
+                                    .rays_per_side = settings.visibility_rays,
+                                    .keep_triangles = !ends.still_scene,
+                                    .audit = settings.audit,
+                                    .leave_out = ctx.backdrop.behind_everything ? &ctx.backdrop.objects : nullptr};
+    };
     const auto stage = Clock::now();
     const std::size_t film_pixels = scene.film.pixels().area();
     if (totals.carried) {
@@ -258,8 +275,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     } else {
         FrameFragmentStats open_stats;
         ends.still.resize(film_pixels, track_objects);
-        ends.open = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid, seg.begin, ctx.shader,
-                                        options, ctx.callbacks, &ends.still, open_stats);
+        ends.open = buildFrameFragments(ctx.frame, request(seg.window.t0), &ends.still, open_stats);
         totals.stats.open.merge(open_stats);
         ++totals.stats.frame_sets;
     }
@@ -267,8 +283,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
         FrameFragmentStats close_stats;
         PixelSums next_still;
         if (carry) next_still.resize(film_pixels, track_objects);
-        ends.close = buildFrameFragments(scene, ctx.embree, ctx.adjacency, ctx.projection, grid, seg.end, ctx.shader,
-                                         options, ctx.callbacks, carry ? &next_still : nullptr, close_stats);
+        ends.close = buildFrameFragments(ctx.frame, request(seg.window.t1), carry ? &next_still : nullptr, close_stats);
         totals.stats.close.merge(close_stats);
         ++totals.stats.frame_sets;
         if (carry) totals.carried.emplace(ends.close, std::move(next_still));
@@ -299,35 +314,49 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
     const auto stage = Clock::now();
     FragmentLayers& layers = plan.layers;
     layers.triangles = {&ends.open, ends.both_frames ? &ends.close : nullptr};
-    layers.time = {seg.begin, seg.end};
-    layers.eye = {evalCamera(scene.camera, seg.begin).position, evalCamera(scene.camera, seg.end).position};
+    layers.time = {seg.window.t0, seg.window.t1};
+    layers.eye = {ctx.frame.motion.camera(seg.window.t0).position, ctx.frame.motion.camera(seg.window.t1).position};
     if (settings.path_method != PathMethod::Exact) {
-        plan.ode.emplace(scene, ctx.projection, seg.begin, seg.end,
-                         settings.path_method == PathMethod::Euler ? OdeMethod::Euler : OdeMethod::Rk4,
-                         settings.ode_steps);
+        plan.ode.emplace(scene, ctx.frame.projection, seg.window.t0, seg.window.t1,
+                         OdeStepping{.method = settings.path_method == PathMethod::Euler ? OdeMethod::Euler : OdeMethod::Rk4,
+                                     .steps = settings.ode_steps});
         layers.ode = &*plan.ode;
     }
     if (ctx.job.output.aov_motion) {  // motion vectors span the whole shutter
-        layers.motion[0] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, ends.open);
-        if (ends.both_frames) layers.motion[1] = fragmentMotion(scene, ctx.projection, ctx.t0, ctx.t1, ends.close);
+        layers.motion[0] = fragmentMotion(ctx.frame, ends.open);
+        if (ends.both_frames) layers.motion[1] = fragmentMotion(ctx.frame, ends.close);
     }
-    plan.motion = planMotion(scene, ctx.projection, ctx.grid, seg.begin, seg.end, layers, seg.subframes,
-                             settings.max_subframes, sweeping, ctx.backdrop);
+    plan.motion = planMotion(ctx.frame, seg.window, layers,
+                             {.subframes = seg.subframes,
+                              .max_subframes = settings.max_subframes,
+                              .sweep = sweeping,
+                              .backdrop = ctx.backdrop});
     totals.stats.capped_tiles += plan.motion.capped_tiles;
     totals.stats.measured_fragment_paths += plan.motion.measured;
     totals.stats.near_crossing_fragments += plan.motion.near_crossings;
     totals.stats.sweep_backdrop_tiles += plan.motion.backdrop_tiles;
     for (const SubframePlan& p : plan.motion.tiles) plan.intervals = std::max(plan.intervals, p.count);
     if (sweeping) {
-        plan.positions = sweepPositions(scene, ctx.projection, layers, seg.begin, seg.end, plan.intervals,
-                                        settings.sweep_spacing, settings.max_subframes);
-        const double h = (seg.end - seg.begin) / plan.intervals;
+        plan.positions = sweepPositions(scene, ctx.frame.projection, layers,
+                                        {.t0 = seg.window.t0,
+                                         .t1 = seg.window.t1,
+                                         .intervals = plan.intervals,
+                                         .spacing = settings.sweep_spacing,
+                                         .max_positions = settings.max_subframes});
+        const double h = (seg.window.t1 - seg.window.t0) / plan.intervals;
         for (int k = 0; k < plan.intervals; ++k)
-            plan.turns.push_back(intervalTurns(scene, ctx.projection, seg.begin + k * h, seg.begin + (k + 1) * h,
+            plan.turns.push_back(intervalTurns(scene, ctx.frame.projection, seg.window.t0 + k * h, seg.window.t0 + (k + 1) * h,
                                                plan.positions[static_cast<std::size_t>(k)]));
     }
     totals.stats.seconds.motion_plan += secondsSince(stage);
 }
+
+// One segment as its tiles integrate it: the spec, the fragment sets at its ends and the plan.
+struct SegmentWork {
+    const SegmentSpec& spec;
+    const SegmentEnds& ends;
+    const SegmentPlan& plan;
+};
 
 // What the tiles of one segment write: their own pixels of the window directly (each tile owns them)
 // and, with sweep integration, what they spill into other tiles' pixels, kept per tile.
@@ -377,14 +406,17 @@ void collectSpills(const std::vector<TileSums>& tile_sums, const PixelBounds& ti
 // Steps 3-5 for one tile: per subframe propagate, re-clip and reduce; the tile adds weight x the average
 // of its subframes to its pixels. Where nothing moves (and no moving shadow can change the lighting
 // between the frames) the segment-start image is the answer. Returns the tile's re-clip count.
-int integrateTile(const ClippedContext& ctx, const SegmentSpec& seg, const SegmentEnds& ends, const SegmentPlan& plan,
-                  int index, TileOutputs& out, ReclipStats& stats) {
+int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int index, TileOutputs& out,
+                  ReclipStats& stats) {
+    const SegmentSpec& seg = segment.spec;
+    const SegmentEnds& ends = segment.ends;
+    const SegmentPlan& plan = segment.plan;
     const Scene& scene = ctx.job.scene;
     const RenderSettings& settings = ctx.job.render;
     const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
     const bool track_objects = ctx.job.output.cryptomatte.enabled;
-    const double ts = seg.begin, te = seg.end;
-    const PixelBounds tile = ctx.grid.tile(index);
+    const double ts = seg.window.t0, te = seg.window.t1;
+    const PixelBounds tile = ctx.frame.grid.tile(index);
     const SubframePlan& tile_plan = plan.motion.tiles[static_cast<std::size_t>(index)];
     const bool still_tile =
         ends.still_scene || (tile_plan.max_sweep_pixels == 0.0 && seg.subframes == 0 && !settings.shadows);
@@ -403,16 +435,16 @@ int integrateTile(const ClippedContext& ctx, const SegmentSpec& seg, const Segme
     std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
     const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
     const double half = 0.5 * (te - ts) / std::max(n, 1);
-    const TileReclip reclip{scene, ctx.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
+    const TileReclip reclip{scene, ctx.frame.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
                             settings.audit};
     tbb::parallel_for(0, n, [&](int k) {
         const double t = times[static_cast<std::size_t>(k)];
-        const MotionSnapshot snapshot(scene, ctx.projection, t);
+        const MotionSnapshot snapshot(scene, ctx.frame.projection, t);
         std::optional<MotionSnapshot> begin, end;
         SweepInterval interval = sweep;
         if (sweeping) {
-            begin.emplace(scene, ctx.projection, t - half);
-            end.emplace(scene, ctx.projection, t + half);
+            begin.emplace(scene, ctx.frame.projection, t - half);
+            end.emplace(scene, ctx.frame.projection, t + half);
             interval.begin = &*begin;
             interval.end = &*end;
             interval.positions = plan.positions[static_cast<std::size_t>(k)];
@@ -429,12 +461,11 @@ int integrateTile(const ClippedContext& ctx, const SegmentSpec& seg, const Segme
             const std::size_t pixel_out = window.index(x, y);
             if (still_tile) {
                 const std::size_t pixel = film.index(x, y);
-                out.sums.add(pixel_out, seg.weight, ends.still.colour[pixel], ends.still.covered[pixel],
-                             ends.still.depth[pixel], {}, sharesAt(ends.still, pixel));
+                out.sums.addStill(pixel_out, seg.weight, ends.still, pixel);
                 continue;
             }
             const Spill sum = subframeTotal(tile_sums, x, y);
-            out.sums.add(pixel_out, w, sum.colour, sum.covered, sum.depth, sum.motion, &sum.objects);
+            out.sums.add(pixel_out, w, sum);
         }
     }
     if (sweeping && n > 0) collectSpills(tile_sums, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
@@ -454,8 +485,8 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     if (plan.motion.backdrop_tiles > 0) {
         front.emplace(sums.colour.size(), ctx.job.output.cryptomatte.enabled);
         if (!totals.backdrop)
-            totals.backdrop = renderBackdrop(ctx.job, ctx.backdrop, 0.5 * (ctx.t0 + ctx.t1), ctx.projection,
-                                             ctx.grid, ctx.callbacks, totals.stats.backdrop.emplace());
+            totals.backdrop = renderBackdrop(ctx.job, ctx.frame, ctx.backdrop, 0.5 * (ctx.frame.motion.t0() + ctx.frame.motion.t1()),
+                                             totals.stats.backdrop.emplace());
     }
     WindowSums& target = front ? *front : sums;
 
@@ -465,20 +496,20 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     std::atomic<bool> cancelled{false};
     std::atomic<long long> tiles_done{0};
     std::mutex merge_mutex;
-    const long long progress_total = static_cast<long long>(ctx.grid.count()) * static_cast<long long>(seg.bands.size());
+    const long long progress_total = static_cast<long long>(ctx.frame.grid.count()) * static_cast<long long>(seg.bands.size());
     const bool sweeping = ctx.job.render.time_integration == TimeIntegration::Sweep;
-    std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.grid.count()) : 0);
+    std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.frame.grid.count()) : 0);
     // Scratch buffers per thread, not per task (allocating them is page faults). Every use clears what it
     // reads, and reclipSubframe starts no TBB work, so a thread never holds its scratch across a steal.
     tbb::enumerable_thread_specific<ReclipScratch> scratches;
     TileOutputs outputs{target, spills, scratches};
-    tbb::parallel_for(0, ctx.grid.count(), [&](int index) {
-        if (ctx.callbacks.cancel && ctx.callbacks.cancel->load(std::memory_order_relaxed)) {
+    tbb::parallel_for(0, ctx.frame.grid.count(), [&](int index) {
+        if (ctx.frame.callbacks.cancel && ctx.frame.callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
             return;
         }
         ReclipStats stats;
-        const int n = integrateTile(ctx, seg, ends, plan, index, outputs, stats);
+        const int n = integrateTile(ctx, {seg, ends, plan}, index, outputs, stats);
         std::lock_guard lock(merge_mutex);
         if (n >= 0) {
             totals.stats.reclip.merge(stats);
@@ -486,19 +517,18 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
             totals.stats.still_tiles += n == 0 ? 1 : 0;
             totals.stats.subframes_max_per_tile = std::max<long long>(totals.stats.subframes_max_per_tile, n);
         }
-        const long long done = ++tiles_done + static_cast<long long>(seg.index) * ctx.grid.count();
-        if (ctx.callbacks.progress) ctx.callbacks.progress(done, progress_total);
+        const long long done = ++tiles_done + static_cast<long long>(seg.index) * ctx.frame.grid.count();
+        if (ctx.frame.callbacks.progress) ctx.frame.callbacks.progress(done, progress_total);
     });
     // Spills after all tiles, in tile order, so the sums do not depend on which thread finished first.
     for (const auto& tile_spills : spills) {
         for (const Spill& s : tile_spills) {
-            target.add(s.out, 1.0, s.colour, s.covered, s.depth, s.motion, &s.objects);
+            target.add(s.out, 1.0, s);
             ++totals.stats.sweep_spilled_pixels;
         }
     }
     if (front)
-        compositeBackdrop(*front, *totals.backdrop, plan.motion, ctx.grid, ctx.window, ctx.job.scene.film.pixels(),
-                          seg.weight, sums);
+        compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.weight}, sums);
     totals.stats.seconds.tiles += secondsSince(stage);
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 }
@@ -511,17 +541,16 @@ namespace {
 // the paper's method and weighted by its length.
 std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, ClippedStats& stats,
                                               std::vector<std::string>& warnings) {
-    const Scene& scene = ctx.job.scene;
     const RenderSettings& settings = ctx.job.render;
     const auto stage = Clock::now();
     std::vector<ShutterSegment> segments = equalSegments(
-        ctx.t0, ctx.t1,
-        stats.both_frames ? shutterSegments(scene, ctx.t0, ctx.t1, settings.segments, settings.max_segments) : 1);
+        ctx.frame.motion.t0(), ctx.frame.motion.t1(),
+        stats.both_frames ? shutterSegments(ctx.frame.motion, settings.segments, settings.max_segments) : 1);
     HiddenProbe probe;
     int unsplit = 0;
-    if (stats.both_frames && settings.segments == 0 && visibilityCanChange(scene, ctx.t0, ctx.t1)) {
+    if (stats.both_frames && settings.segments == 0 && visibilityCanChange(ctx.frame.motion.shutter())) {
         const auto hidden = [&](double a, double b) {
-            return hidesSomethingAtBothEnds(scene, ctx.embree, ctx.projection, a, b, probe);
+            return hidesSomethingAtBothEnds(ctx.frame, a, b, probe);
         };
         segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
     }
@@ -542,18 +571,20 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
     const Scene& scene = ctx.job.scene;
     const int fixed_total = ctx.job.render.subframes;
     const auto stage = Clock::now();
+    std::vector<MotionWindow> windows;
     std::vector<int> bands;
-    for (const ShutterSegment& s : segments)
-        bands.push_back(guardBandPixels(scene, ctx.projection, s.begin, s.end,
+    for (const ShutterSegment& s : segments) {
+        windows.push_back(ctx.frame.motion.window(s.begin, s.end));
+        bands.push_back(guardBandPixels(ctx.frame.motion, ctx.frame.projection, windows.back(),
                                         std::max(scene.film.width, scene.film.height) / 2));
+    }
     // A fixed count's share before a fraction of the shutter (1e-9: sums of 1/n reach whole numbers).
     const auto before = [&](double fraction) { return static_cast<int>(std::floor(fixed_total * fraction + 1e-9)); };
     double share = 0.0;  // the shutter's fraction before the segment
     for (std::size_t s = 0; s < segments.size(); ++s) {
         const int fixed = fixed_total > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
         share += segments[s].weight;
-        renderSegment(ctx, {segments[s].begin, segments[s].end, segments[s].weight, fixed, static_cast<int>(s), bands},
-                      sums, totals);
+        renderSegment(ctx, {windows[s], segments[s].weight, fixed, static_cast<int>(s), bands}, sums, totals);
     }
     totals.stats.seconds.segments = secondsSince(stage);
 }
@@ -583,34 +614,25 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const auto start = Clock::now();
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.render;
-    const double t0 = frame + job.shutter.open;
-    const double t1 = frame + job.shutter.close;
+    const FrameMotion motion(scene, frame + job.shutter.open, frame + job.shutter.close);
 
     // A backdrop behind everything is rendered on its own: rays for the fragment sets need not meet it.
-    const Backdrop backdrop = findBackdrop(job, t0, t1);
-    EmbreeDevice device;
-    const EmbreeScene embree(device, scene, t0, t1, backdrop.behind_everything ? &backdrop.objects : nullptr);
-    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
-    const MeshAdjacency adjacency(scene);
-    const ClippedContext ctx{job,
-                             embree,
-                             shader,
-                             adjacency,
-                             Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees),
-                             TileGrid(scene.film.width, scene.film.height, settings.tile_size),
-                             renderWindow(job),
-                             t0,
-                             t1,
-                             callbacks,
-                             backdrop};
+    const Backdrop backdrop = findBackdrop(job, motion);
+    const FrameBuild build(motion,
+                           {.tile_size = settings.tile_size,
+                            .shadows = settings.shadows,
+                            .leave_out = backdrop.behind_everything ? &backdrop.objects : nullptr},
+                           callbacks);
+    const FrameSetup& setup = build.setup();
+    const ClippedContext ctx{job, setup, renderWindow(job), backdrop};
     RenderResult result;
     SegmentTotals totals;
     ClippedStats& stats = totals.stats;
     stats.both_frames = settings.method != Method::Frame0Only;
     stats.sweep = settings.time_integration == TimeIntegration::Sweep;
     stats.ode = settings.path_method != PathMethod::Exact;
-    stats.tiles = ctx.grid.count();
-    stats.triangles = embree.stats().triangles;
+    stats.tiles = ctx.frame.grid.count();
+    stats.triangles = setup.embree.stats().triangles;
     stats.backdrop_behind_everything = backdrop.behind_everything;
     stats.seconds.scene_build = secondsSince(start);
 
@@ -619,9 +641,11 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     renderSegments(ctx, segments, sums, totals);
     FrameFragmentStats mid_stats;
     std::optional<EmbreeScene> whole;  // the mid-shutter depth sees the backdrop too
-    if (backdrop.behind_everything && job.output.aov_depth) whole.emplace(device, scene, t0, t1);
-    const std::optional<PixelSums> mid =
-        midShutterDepth(job, whole ? *whole : embree, adjacency, shader, t0, t1, callbacks, mid_stats);
+    if (backdrop.behind_everything && job.output.aov_depth) whole.emplace(build.device(), motion);
+    const std::optional<PixelSums> mid = midShutterDepth(
+        job,
+        whole ? FrameSetup{motion, *whole, setup.adjacency, setup.shader, setup.projection, setup.grid, callbacks} : setup,
+        mid_stats);
     writeWindow(ctx, sums, mid, result);
 
     if (mid) stats.mid = mid_stats;
@@ -644,28 +668,23 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
 RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.render;
-    const double t0 = frame + job.shutter.open;
-    const double t1 = frame + job.shutter.close;
-    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const TileGrid grid(scene.film.width, scene.film.height, settings.tile_size);
+    const FrameMotion motion(scene, frame + job.shutter.open, frame + job.shutter.close);
     const std::size_t pixels = scene.film.pixels().area();
     const int n = std::max(1, settings.samples);
 
-    EmbreeDevice device;
-    const EmbreeScene embree(device, scene, t0, t1);
-    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
-    const MeshAdjacency adjacency(scene);
+    const FrameBuild build(motion, {.tile_size = settings.tile_size, .shadows = settings.shadows}, callbacks);
+    const FrameSetup& setup = build.setup();
 
     const bool track_objects = job.output.cryptomatte.enabled;
     PixelSums total;
     total.resize(pixels, track_objects);
     FrameFragmentStats frame_stats;
-    for (const double t : subframeTimes(t0, t1, n)) {
+    for (const double t : subframeTimes(motion.t0(), motion.t1(), n)) {
         PixelSums sums;
         sums.resize(pixels, track_objects);
-        buildFrameFragments(scene, embree, adjacency, projection, grid, t, shader,
-                            {.rays_per_side = settings.visibility_rays, .keep_triangles = false, .audit = settings.audit},
-                            callbacks, &sums, frame_stats);
+        buildFrameFragments(
+            setup, {.time = t, .rays_per_side = settings.visibility_rays, .keep_triangles = false, .audit = settings.audit},
+            &sums, frame_stats);
         for (std::size_t p = 0; p < pixels; ++p) {
             total.colour[p] += sums.colour[p];
             total.covered[p] += sums.covered[p];
@@ -674,7 +693,7 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
         }
     }
     FrameFragmentStats mid_stats;
-    const std::optional<PixelSums> mid = midShutterDepth(job, embree, adjacency, shader, t0, t1, callbacks, mid_stats);
+    const std::optional<PixelSums> mid = midShutterDepth(job, setup, mid_stats);
     RenderResult result;
     const PixelBounds window = renderWindow(job);
     result.image = Image::make(scene.film.width, scene.film.height, window, outputChannels(job.output));

@@ -82,13 +82,13 @@ void FrameFragmentStats::merge(const FrameFragmentStats& s) {
     audit.merge(s.audit);
 }
 
-std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const EmbreeScene& embree,
-                                                  const MeshAdjacency& adjacency, const Projection& projection,
-                                                  const TileGrid& grid, double time, const Shader& shader,
-                                                  const FrameFragmentOptions& options,
-                                                  const RenderCallbacks& callbacks, PixelSums* still,
-                                                  FrameFragmentStats& stats) {
-    const FrameGeometry frame(scene, projection, time, grid);
+std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const FrameFragmentRequest& request,
+                                                  PixelSums* still, FrameFragmentStats& stats) {
+    const Scene& scene = setup.scene();
+    const TileGrid& grid = request.grid ? *request.grid : setup.grid;
+    const double time = request.time;
+    const RenderCallbacks& callbacks = setup.callbacks;
+    const FrameGeometry frame(setup.motion, setup.projection, time, grid);
     const glm::dvec3 eye = frame.camera().position;
     const int width = scene.film.width;
     const int height = scene.film.height;
@@ -109,11 +109,11 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         const PixelBounds tile = grid.tile(index);
         TileOutput& out = outputs[static_cast<std::size_t>(index)];
         Scratch& scratch = scratches.local();
-        std::vector<std::uint32_t> candidates;
-        findCandidates(frame, embree, adjacency, projection, tile, index, options.rays_per_side, scratch.candidates,
-                       candidates, out.stats.candidates);
-        if (options.leave_out)
-            std::erase_if(candidates, [&](std::uint32_t c) { return (*options.leave_out)[frame.source(c).object] != 0; });
+        std::vector<std::uint32_t> candidates =
+            findCandidates(frame, {setup.embree, setup.adjacency, request.rays_per_side}, index, scratch.candidates,
+                           out.stats.candidates);
+        if (request.leave_out)
+            std::erase_if(candidates, [&](std::uint32_t c) { return (*request.leave_out)[frame.source(c).object] != 0; });
         std::vector<ScreenTriangle> local;
         local.reserve(candidates.size());
         for (std::uint32_t c : candidates) local.push_back(frame.triangles()[c]);
@@ -122,7 +122,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
         resolveTile(local, tile, {}, scratch.tile, fragments);
         out.stats.rejected_triangles += fragments.rejected_triangles;
         out.stats.dropped_area += fragments.dropped_area;
-        if (options.audit) auditTile(local, fragments, out.stats.audit);
+        if (request.audit) auditTile(local, fragments, out.stats.audit);
 
         // Visible area of each candidate in the tile. A triangle whose visible area is all of its part
         // inside the tile is kept as that one polygon instead of one piece per pixel: same surface points,
@@ -164,7 +164,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
                     if (!merged[localIndex(screen_index)]) emitPolygon(polygon, screen, source, out.triangles);
                     if (!still || x < 0 || y < 0 || x >= width || y >= height) continue;  // guard band
                     pieces.clear();
-                    shadeFragment(polygon, screen, source, shader, time, eye, pieces);
+                    shadeFragment(polygon, screen, source, setup.shader, time, eye, pieces);
                     out.stats.shaded_pieces += static_cast<long long>(pieces.size());
                     for (const ShadedPiece& piece : pieces) {
                         still->colour[pixel] += piece.area * piece.colour;
@@ -178,7 +178,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const Embr
             }
         }
         out.stats.triangles = static_cast<long long>(out.triangles.size());
-        if (!options.keep_triangles) out.triangles.clear();
+        if (!request.keep_triangles) out.triangles.clear();
     });
     if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 

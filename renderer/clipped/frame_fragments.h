@@ -9,11 +9,7 @@
 #include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/pixel_resolver.h"
 #include "renderer/object_coverage.h"
-#include "renderer/render_callbacks.h"
-#include "renderer/shading/shading.h"
-#include "renderer/tiles.h"
-#include "renderer/visibility/candidates.h"
-#include "renderer/visibility/embree_scene.h"
+#include "renderer/frame_setup.h"
 
 namespace clipblur {
 
@@ -38,7 +34,7 @@ struct FrameFragmentStats {
     long long rejected_triangles = 0;
     double dropped_area = 0.0;
     std::array<long long, 6> fragments_per_pixel{};  // pixels with 0, 1, 2, 3-4, 5-8, >8 fragments
-    AuditStats audit;                                 // filled when FrameFragmentOptions::audit is set
+    AuditStats audit;                                 // filled when FrameFragmentRequest::audit is set
 
     void merge(const FrameFragmentStats& other);
     // The audit is reported once per render (ClippedStats), not per fragment set.
@@ -58,7 +54,10 @@ struct FrameFragmentStats {
     friend bool operator==(const FrameFragmentStats&, const FrameFragmentStats&) = default;
 };
 
-struct FrameFragmentOptions {
+// Which fragment set to build: at what time, over which tiles, and how.
+struct FrameFragmentRequest {
+    double time = 0.0;
+    const TileGrid* grid = nullptr;  // the tiles to resolve (a film plus a guard band); null: the film's
     int rays_per_side = 2;       // Embree candidate rays per pixel side; 0: every binned triangle
     bool keep_triangles = true;  // return the fragment triangles (false: only the still image)
     bool audit = false;          // check every resolved tile's invariants (auditTile)
@@ -70,11 +69,7 @@ struct FrameFragmentOptions {
 // kernel makes each pixel's non-overlapping fragments, and each fragment is shaded with that time's
 // lighting. Returns the fragments as triangles on their meshes (in tile order, so deterministic; empty
 // unless keep_triangles) and, when `still` is given, the frame's pixel sums. Parallel over tiles.
-std::vector<FragmentTriangle> buildFrameFragments(const Scene& scene, const EmbreeScene& embree,
-                                                  const MeshAdjacency& adjacency, const Projection& projection,
-                                                  const TileGrid& grid, double time, const Shader& shader,
-                                                  const FrameFragmentOptions& options,
-                                                  const RenderCallbacks& callbacks, PixelSums* still,
-                                                  FrameFragmentStats& stats);
+std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& frame, const FrameFragmentRequest& request,
+                                                  PixelSums* still, FrameFragmentStats& stats);
 
 }  // namespace clipblur

@@ -46,13 +46,15 @@ double bandOf(const std::array<Raster, kTimeSamples>& path, const Projection& pr
 
 }  // namespace
 
-int guardBandPixels(const Scene& scene, const Projection& projection, double t0, double t1, int cap) {
-    const bool still_camera = cameraIsStill(scene.camera, t0, t1);
+int guardBandPixels(const FrameMotion& motion, const Projection& projection, const MotionWindow& window, int cap) {
+    const Scene& scene = motion.scene();
+    const double t0 = window.t0, t1 = window.t1;
+    const bool still_camera = window.camera_still;
     std::array<double, kTimeSamples> times{};
     std::array<CameraFrame, kTimeSamples> cameras{};
     for (int k = 0; k < kTimeSamples; ++k) {
         times[k] = t0 + (t1 - t0) * k / (kTimeSamples - 1);
-        cameras[k] = evalCamera(scene.camera, times[k]);
+        cameras[k] = motion.camera(times[k]);
     }
     double band = 0.0;
 
@@ -76,9 +78,10 @@ int guardBandPixels(const Scene& scene, const Projection& projection, double t0,
 
     // Points on the meshes: vertices, triangle centroids and edge midpoints.
     std::array<std::vector<glm::dvec3>, kTimeSamples> world;
-    for (const Object& object : scene.objects) {
-        if (still_camera && isStatic(object, t0, t1)) continue;
-        for (int k = 0; k < kTimeSamples; ++k) evalVertices(object, times[k], world[k]);
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        if (window.stillInImage(o)) continue;
+        for (int k = 0; k < kTimeSamples; ++k) motion.vertices(o, times[k], world[k]);
         const auto track = [&](auto&& point) {
             std::array<Raster, kTimeSamples> path{};
             for (int k = 0; k < kTimeSamples; ++k) path[k] = toRaster(cameras[k], projection, point(world[k]));

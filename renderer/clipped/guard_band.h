@@ -1,7 +1,7 @@
 #pragma once
 
+#include "renderer/frame_motion.h"
 #include "scene/camera.h"
-#include "scene/scene.h"
 
 namespace clipblur {
 
@@ -13,6 +13,6 @@ namespace clipblur {
 // and where it is at close: taken over the image's corners and edge midpoints for the camera's rotation
 // (depth independent) and over mesh vertices, triangle centroids and edge midpoints that come near the
 // image for everything else. Zero when nothing moves; capped at `cap`.
-int guardBandPixels(const Scene& scene, const Projection& projection, double t0, double t1, int cap);
+int guardBandPixels(const FrameMotion& motion, const Projection& projection, const MotionWindow& window, int cap);
 
 }  // namespace clipblur

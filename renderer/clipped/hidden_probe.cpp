@@ -6,7 +6,6 @@
 #include <tbb/parallel_for.h>
 
 #include "renderer/propagation/surface_path.h"
-#include "scene/object_motion.h"
 
 namespace clipblur {
 
@@ -26,10 +25,12 @@ bool heldAt(const MotionSnapshot& end, const Scene& scene, const EmbreeScene& em
 
 }  // namespace
 
-HiddenProbe probeHiddenAtBothEnds(const Scene& scene, const EmbreeScene& embree, const Projection& projection,
-                                  double a, double b, double at, int offset) {
+HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset) {
+    const Scene& scene = frame.scene();
+    const EmbreeScene& embree = frame.embree;
+    const Projection& projection = frame.projection;
     const MotionSnapshot open(scene, projection, a), close(scene, projection, b);
-    const CameraFrame camera = evalCamera(scene.camera, at);
+    const CameraFrame camera = frame.motion.camera(at);
     constexpr std::array<int, 4> kOffsetX{0, 1, 1, 0}, kOffsetY{0, 1, 0, 1};
     const int ox = kOffsetX[static_cast<std::size_t>(offset & 3)], oy = kOffsetY[static_cast<std::size_t>(offset & 3)];
     const int columns = (scene.film.width - ox + kProbeStride - 1) / kProbeStride;
@@ -56,21 +57,14 @@ HiddenProbe probeHiddenAtBothEnds(const Scene& scene, const EmbreeScene& embree,
     return total;
 }
 
-bool visibilityCanChange(const Scene& scene, double t0, double t1) {
-    const auto same_eye = [](const CameraFrame& a, const CameraFrame& b) { return a.position == b.position; };
-    if (!cameraKeeps(scene.camera, t0, t1, same_eye)) return true;
-    for (const Object& object : scene.objects)
-        if (!isStatic(object, t0, t1)) return true;
-    return false;
-}
+bool visibilityCanChange(const MotionWindow& window) { return !window.eye_still || window.anyObjectMoves(); }
 
-bool hidesSomethingAtBothEnds(const Scene& scene, const EmbreeScene& embree, const Projection& projection,
-                              double a, double b, HiddenProbe& total) {
+bool hidesSomethingAtBothEnds(const FrameSetup& frame, double a, double b, HiddenProbe& total) {
     // The middle first: two objects crossing over one spot uncover it there.
     constexpr std::array<double, 3> kAt{0.5, 0.25, 0.75};
     for (std::size_t k = 0; k < kAt.size(); ++k) {
         const HiddenProbe probe =
-            probeHiddenAtBothEnds(scene, embree, projection, a, b, a + (b - a) * kAt[k], static_cast<int>(k));
+            probeHiddenAtBothEnds(frame, a, b, a + (b - a) * kAt[k], static_cast<int>(k));
         total.samples += probe.samples;
         total.hidden += probe.hidden;
         if (probe.hidden > 0) return true;

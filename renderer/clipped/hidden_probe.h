@@ -1,8 +1,6 @@
 #pragma once
 
-#include "renderer/visibility/embree_scene.h"
-#include "scene/camera.h"
-#include "scene/scene.h"
+#include "renderer/frame_setup.h"
 
 namespace clipblur {
 
@@ -28,16 +26,14 @@ inline constexpr int kProbeStride = 2;
 inline constexpr double kHeldDepthTolerance = 1e-3;
 
 // Probes the film at time `at`, strictly inside [a, b], with probe offset `offset` (0-3).
-HiddenProbe probeHiddenAtBothEnds(const Scene& scene, const EmbreeScene& embree, const Projection& projection,
-                                  double a, double b, double at, int offset);
+HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset);
 
 // Whether anything seen from the camera can change what it hides during [t0, t1]: false when the eye does
 // not move and no object moves (a camera that only turns sees the same surfaces from the same point).
-bool visibilityCanChange(const Scene& scene, double t0, double t1);
+bool visibilityCanChange(const MotionWindow& window);
 
 // Whether the probe at times a quarter, half and three quarters into [a, b] finds a surface hidden at
 // both a and b; counts every probe it ran into `total`.
-bool hidesSomethingAtBothEnds(const Scene& scene, const EmbreeScene& embree, const Projection& projection,
-                              double a, double b, HiddenProbe& total);
+bool hidesSomethingAtBothEnds(const FrameSetup& frame, double a, double b, HiddenProbe& total);
 
 }  // namespace clipblur

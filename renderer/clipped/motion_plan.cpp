@@ -90,19 +90,15 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
 
 }  // namespace
 
-bool cameraIsStill(const Camera& camera, double t0, double t1) {
-    return cameraKeeps(camera, t0, t1, [](const CameraFrame& a, const CameraFrame& b) {
-        return a.position == b.position && a.e1 == b.e1 && a.e3 == b.e3;
-    });
-}
-
-MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
-                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep,
-                      const Backdrop& backdrop) {
-    const bool still_camera = cameraIsStill(scene.camera, t0, t1);
-    std::vector<char> still_object(scene.objects.size());
-    for (std::size_t o = 0; o < scene.objects.size(); ++o)
-        still_object[o] = still_camera && isStatic(scene.objects[o], t0, t1);
+MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers,
+                      const MotionPlanOptions& options) {
+    const Scene& scene = frame.scene();
+    const Projection& projection = frame.projection;
+    const TileGrid& grid = frame.grid;
+    const double t0 = window.t0, t1 = window.t1;
+    const int subframes = options.subframes, max_subframes = options.max_subframes;
+    const bool sweep = options.sweep;
+    const Backdrop& backdrop = options.backdrop;
 
     // Few intervals: the swept box keeps a speed-times-gap margin, and the count uses peak speed.
     const ShutterPathSampler sampler(scene, projection, t0, t1, 2);
@@ -120,7 +116,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
             const std::array<MeshPoint, 3> points{MeshPoint{t.object, t.triangle, t.bary[0]},
                                                   MeshPoint{t.object, t.triangle, t.bary[1]},
                                                   MeshPoint{t.object, t.triangle, t.bary[2]}};
-            if (still_object[t.object]) {
+            if (window.stillInImage(t.object)) {
                 FragmentMotion fm;
                 for (const MeshPoint& p : points) {
                     const ProjectedPoint q = project(open, scene, p);
@@ -135,7 +131,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
                 m[i] = sampler.measure(points);
             }
         });
-        for (std::size_t i = 0; i < triangles->size(); ++i) plan.measured += still_object[(*triangles)[i].object] ? 0 : 1;
+        for (std::size_t i = 0; i < triangles->size(); ++i) plan.measured += window.stillInImage((*triangles)[i].object) ? 0 : 1;
     }
 
     const int count = grid.count();
@@ -165,7 +161,7 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
     const auto object = [&](const FragmentRef& ref) { return (*layers.triangles[ref.layer])[ref.index].object; };
     // Relative motion is between surfaces that move differently in the world, not between objects: a
     // surface cut into many objects that move together has none, as one object has none with itself.
-    plan.groups = motionGroups(scene, t0, t1);
+    plan.groups = frame.motion.groups(window);
     const auto motionGroup = [&](const FragmentRef& ref) { return plan.groups[object(ref)]; };
     tbb::parallel_for(0, count, [&](int index) {
         auto& refs = plan.refs[static_cast<std::size_t>(index)];
@@ -239,7 +235,9 @@ MotionPlan planMotion(const Scene& scene, const Projection& projection, const Ti
 }
 
 std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
-                                double t0, double t1, int count, double spacing, int max_positions) {
+                                const SweepLayout& layout) {
+    const double t0 = layout.t0, t1 = layout.t1;
+    const int count = layout.intervals;
     std::vector<MeshPoint> vertices;
     for (const auto* triangles : layers.triangles) {
         if (!triangles) continue;
@@ -259,13 +257,13 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
                     const ProjectedPoint a = project(begin, scene, vertices[i]), m = project(middle, scene, vertices[i]),
                                          b = project(end, scene, vertices[i]);
                     if (a.behind || m.behind || b.behind) continue;
-                    const SweepPath path = SweepPath::through(a.raster, a.depth, m.raster, m.depth, b.raster, b.depth);
+                    const SweepPath path = SweepPath::through({a.raster, a.depth}, {m.raster, m.depth}, {b.raster, b.depth});
                     farthest = std::max(farthest, 2.0 * path.reach());
                 }
                 return farthest;
             },
             [](double x, double y) { return std::max(x, y); });
-        positions[static_cast<std::size_t>(k)] = subframeCount(extent / spacing, max_positions);
+        positions[static_cast<std::size_t>(k)] = subframeCount(extent / layout.spacing, layout.max_positions);
     }
     return positions;
 }

@@ -24,7 +24,7 @@ struct MotionPlan {
     long long near_crossings = 0;  // fragment triangles reaching the camera plane during the shutter
 };
 
-// Measures every fragment triangle's swept raster box and peak speed over [t0, t1] (triangles of objects
+// Measures every fragment triangle's swept raster box and peak speed over the window (triangles of objects
 // that do not move under a still camera are measured at t0 only), bins them to the tiles their swept
 // box overlaps, and plans each tile's subframes (the corrected eq. 24). subframes > 0 forces that count.
 // With `sweep` (render.time_integration: sweep) the count follows relative motion and path curvature, and
@@ -32,20 +32,31 @@ struct MotionPlan {
 // that moves near a tile are split off there (MotionPlan::backdrop) and their motion relative to the rest is
 // not counted; when they are behind everything all shutter the fragment sets have none of them and every
 // tile is a backdrop tile.
-MotionPlan planMotion(const Scene& scene, const Projection& projection, const TileGrid& grid, double t0, double t1,
-                      const FragmentLayers& layers, int subframes, int max_subframes, bool sweep,
-                      const Backdrop& backdrop = {});
+struct MotionPlanOptions {
+    int subframes = 0;  // > 0: every tile's count
+    int max_subframes = 1;
+    bool sweep = false;
+    const Backdrop& backdrop;
+};
+MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers,
+                      const MotionPlanOptions& options);
 
-// Sweep integration: the positions of each of `count` equal intervals of [t0, t1], shared by every fragment
+// How sweep positions are laid out: `intervals` equal intervals of [t0, t1], at most `spacing` pixels and
+// at most `max_positions` positions apart.
+struct SweepLayout {
+    double t0 = 0.0, t1 = 1.0;
+    int intervals = 1;
+    double spacing = 1.0;
+    int max_positions = 1;
+};
+
+// Sweep integration: the positions of each of the layout's equal intervals of [t0, t1], shared by every fragment
 // (equal times keep shared edges closed) and spaced so that no fragment vertex moves more than `spacing`
 // pixels between them during that interval: along the parabola through its positions at the interval's
 // ends and middle, as a swept fragment moves. An interval where things move slowly (the end of a dolly
 // away) gets fewer positions than one where they move fast. Vertices at or behind the camera plane are
 // left out (they are not swept, see SweepInterval::reach).
 std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
-                                double t0, double t1, int count, double spacing, int max_positions);
-
-// True when the camera keys give the same pose at every time of [t0, t1].
-bool cameraIsStill(const Camera& camera, double t0, double t1);
+                                const SweepLayout& layout);
 
 }  // namespace clipblur

@@ -4,57 +4,12 @@
 #include <cmath>
 #include <numbers>
 
-#include <glm/gtc/quaternion.hpp>
-
-#include "scene/camera.h"
-#include "scene/object_motion.h"
 
 namespace clipblur {
 
-namespace {
-
-double angleBetween(const glm::dquat& a, const glm::dquat& b) {
-    const double c = std::min(1.0, std::abs(glm::dot(glm::normalize(a), glm::normalize(b))));
-    return 2.0 * std::acos(c);
-}
-
-}  // namespace
-
-double largestTurn(const Scene& scene, double t0, double t1) {
-    // Slerp and the camera's SO(3) interpolation turn at a constant rate within a key interval, and keys
-    // turn by less than pi each; 256 samples resolve any shutter with fewer than 128 keys inside it.
-    constexpr int kSamples = 256;
-    const auto turn = [&](auto orientation) {
-        double total = 0.0;
-        glm::dquat previous = orientation(t0);
-        for (int i = 1; i <= kSamples; ++i) {
-            const glm::dquat q = orientation(t0 + (t1 - t0) * i / kSamples);
-            total += angleBetween(previous, q);
-            previous = q;
-        }
-        return total;
-    };
-    double largest = turn([&](double t) { return glm::quat_cast(evalCamera(scene.camera, t).basis()); });
-    for (const Object& object : scene.objects) {
-        if (object.transform.size() < 2) continue;
-        largest = std::max(largest, turn([&](double t) { return evalTransform(object.transform, t).rotate; }));
-    }
-    return largest;
-}
-
-bool sceneIsStill(const Scene& scene, double t0, double t1) {
-    const auto same = [](const CameraFrame& a, const CameraFrame& b) {
-        return a.position == b.position && a.e1 == b.e1 && a.e2 == b.e2 && a.e3 == b.e3;
-    };
-    if (!cameraKeeps(scene.camera, t0, t1, same)) return false;
-    for (const Object& object : scene.objects)
-        if (!isStatic(object, t0, t1)) return false;
-    return true;
-}
-
-int shutterSegments(const Scene& scene, double t0, double t1, int requested, int max_segments) {
+int shutterSegments(const FrameMotion& motion, int requested, int max_segments) {
     if (requested > 0) return std::min(requested, max_segments);
-    const double degrees = largestTurn(scene, t0, t1) * 180.0 / std::numbers::pi;
+    const double degrees = motion.largestTurn() * 180.0 / std::numbers::pi;
     const int n = static_cast<int>(std::ceil(degrees / kAutoSegmentTurnDegrees - 1e-9));
     return std::clamp(n, 1, max_segments);
 }

@@ -3,13 +3,9 @@
 #include <functional>
 #include <vector>
 
-#include "scene/scene.h"
+#include "renderer/frame_motion.h"
 
 namespace clipblur {
-
-// Largest rotation (radians) that the camera or any object turns through during [t0, t1], summed along
-// the motion (sampled finely enough that no key interval turns by more than pi between samples).
-double largestTurn(const Scene& scene, double t0, double t1);
 
 // The paper builds fragment sets only at shutter open and close, so a surface hidden at both ends but
 // seen in between (the wall behind a propeller whose blades return to the same places, the side of the
@@ -18,11 +14,7 @@ double largestTurn(const Scene& scene, double t0, double t1);
 // sets. `requested` > 0 is used as given; 0 (auto) gives one segment per kAutoSegmentTurnDegrees of the largest
 // turn, at most max_segments; a shutter with no rotation is one segment, the paper's method.
 inline constexpr double kAutoSegmentTurnDegrees = 15.0;
-// Nothing in the scene moves during [t0, t1]: the camera frame is the same at t0, t1 and every camera key
-// between them, and every object isStatic. Then the shutter-open image is the whole answer.
-bool sceneIsStill(const Scene& scene, double t0, double t1);
-
-int shutterSegments(const Scene& scene, double t0, double t1, int requested, int max_segments);
+int shutterSegments(const FrameMotion& motion, int requested, int max_segments);
 
 // One shutter segment and its share of the shutter.
 struct ShutterSegment {

@@ -15,7 +15,9 @@ namespace {
 // The farthest depth any point of a moving object reaches in [t0, t1] under the still camera `frame`: its
 // origin's depth (linear between transform keys, so extreme at t0, t1 or a key) plus the largest distance
 // of a vertex from the origin (scale and deformation are linear between keys too, so bounded at them).
-double farthestDepth(const Object& object, const CameraFrame& frame, double t0, double t1) {
+double farthestDepth(const FrameMotion& motion, std::size_t o, const CameraFrame& frame) {
+    const Object& object = motion.scene().objects[o];
+    const double t0 = motion.t0(), t1 = motion.t1();
     std::vector<double> times{t0, t1};
     double scale = 0.0;
     for (const TransformKey& k : object.transform) {
@@ -29,34 +31,34 @@ double farthestDepth(const Object& object, const CameraFrame& frame, double t0, 
         for (const glm::dvec3& p : k.positions) radius = std::max(radius, glm::length(p));
     double far = -std::numeric_limits<double>::infinity();
     for (double t : times)
-        far = std::max(far, glm::dot(frame.e3, evalTransform(object.transform, t).translate - frame.position));
+        far = std::max(far, glm::dot(frame.e3, motion.transform(o, t).translate - frame.position));
     return far + scale * radius;
 }
 
 }  // namespace
 
-Backdrop findBackdrop(const RenderJob& job, double t0, double t1) {
+Backdrop findBackdrop(const RenderJob& job, const FrameMotion& motion) {
     const Scene& scene = job.scene;
     if (job.render.time_integration != TimeIntegration::Sweep || job.render.shadows ||
-        job.render.method != Method::Clipped || !cameraIsStill(scene.camera, t0, t1))
+        job.render.method != Method::Clipped || !motion.shutter().camera_still)
         return {};
     Backdrop backdrop;
     backdrop.objects.resize(scene.objects.size());
     bool still = false, moving = false;
-    const CameraFrame frame = evalCamera(scene.camera, t0);
+    const CameraFrame frame = motion.camera(motion.t0());
     double moving_far = -std::numeric_limits<double>::infinity(), still_near = std::numeric_limits<double>::infinity();
     std::vector<glm::dvec3> world;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const Object& object = scene.objects[o];
         if (object.mesh.triangles.empty()) continue;
-        backdrop.objects[o] = isStatic(object, t0, t1);
+        backdrop.objects[o] = motion.shutter().objectStill(o);
         if (backdrop.objects[o]) {
             still = true;
-            evalVertices(object, t0, world);
+            motion.vertices(o, motion.t0(), world);
             for (const glm::dvec3& p : world) still_near = std::min(still_near, glm::dot(frame.e3, p - frame.position));
         } else {
             moving = true;
-            moving_far = std::max(moving_far, farthestDepth(object, frame, t0, t1));
+            moving_far = std::max(moving_far, farthestDepth(motion, o, frame));
         }
     }
     if (!still || !moving) return {};
@@ -64,8 +66,8 @@ Backdrop findBackdrop(const RenderJob& job, double t0, double t1) {
     return backdrop;
 }
 
-PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double time, const Projection& projection,
-                         const TileGrid& grid, const RenderCallbacks& callbacks, FrameFragmentStats& stats) {
+PixelSums renderBackdrop(const RenderJob& job, const FrameSetup& frame, const Backdrop& backdrop, double time,
+                         FrameFragmentStats& stats) {
     Scene still = job.scene;
     still.objects.clear();
     std::vector<int> original;  // per object of `still`, its index in the job's scene
@@ -74,15 +76,14 @@ PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double 
         still.objects.push_back(job.scene.objects[o]);
         original.push_back(static_cast<int>(o));
     }
-    const EmbreeDevice device;
-    const EmbreeScene embree(device, still, time, time);
-    const Shader shader(still, time, time);
-    const MeshAdjacency adjacency(still);
+    const FrameMotion motion(still, time, time);
+    const FrameBuild build(motion, {.tile_size = frame.grid.tileSize()}, frame.callbacks);
+    const FrameSetup& setup = build.setup();
     PixelSums sums;
     sums.resize(static_cast<std::size_t>(still.film.width) * still.film.height, job.output.cryptomatte.enabled);
-    buildFrameFragments(still, embree, adjacency, projection, grid, time, shader,
-                        {.rays_per_side = job.render.visibility_rays, .keep_triangles = false, .audit = job.render.audit},
-                        callbacks, &sums, stats);
+    buildFrameFragments(
+        setup, {.time = time, .rays_per_side = job.render.visibility_rays, .keep_triangles = false, .audit = job.render.audit},
+        &sums, stats);
     // The mapping keeps object order, so each pixel's shares stay sorted.
     for (ObjectShares& shares : sums.objects)
         for (ObjectShare& s : shares) s.object = original[static_cast<std::size_t>(s.object)];

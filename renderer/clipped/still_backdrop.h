@@ -3,9 +3,8 @@
 #include <vector>
 
 #include "renderer/clipped/frame_fragments.h"
-#include "renderer/render_callbacks.h"
+#include "renderer/frame_setup.h"
 #include "scene/job.h"
-#include "renderer/tiles.h"
 
 namespace clipblur {
 
@@ -24,12 +23,13 @@ struct Backdrop {
 
 // Empty for a moving camera, shadows (moving objects would cast them on the backdrop), point subframes,
 // or when nothing or everything is still.
-Backdrop findBackdrop(const RenderJob& job, double t0, double t1);
+Backdrop findBackdrop(const RenderJob& job, const FrameMotion& motion);
 
 // The backdrop's image: the still objects alone, resolved and shaded as a still frame. With no light
 // moving and no shadows it looks the same at every time, and since nothing else is in it, the parts that
 // moving objects hide at both ends of a segment are there too (the frame-0 / frame-1 union misses them).
-PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double time, const Projection& projection,
-                         const TileGrid& grid, const RenderCallbacks& callbacks, FrameFragmentStats& stats);
+// At `time`, with the frame's projection, tiles and callbacks.
+PixelSums renderBackdrop(const RenderJob& job, const FrameSetup& frame, const Backdrop& backdrop, double time,
+                         FrameFragmentStats& stats);
 
 }  // namespace clipblur

@@ -39,26 +39,29 @@ bool PolygonObjects::none() const {
 
 namespace {
 
-void addScreenTriangle(const MotionSnapshot& snapshot, const std::array<glm::dvec3, 3>& world,
-                       const SourceTriangle& source, FragmentRef ref, float weight, ReclipScratch& scratch) {
-    ScreenTriangle s;
-    for (int i = 0; i < 3; ++i) {
-        const ImagePoint ip = projectToImagePlane(snapshot.camera, world[i]);
-        s.raster[i] = snapshot.projection.toRaster(ip.p);
-        s.inv_depth[i] = 1.0 / ip.depth;
-    }
-    s.source = static_cast<std::uint32_t>(scratch.screen.size());
-    s.layer = ref.layer;
-    s.weight = weight;
-    scratch.screen.push_back(s);
-    scratch.origin.push_back(ref);
-    scratch.sources.push_back(source);
-}
-
-// Moves one fragment triangle to the snapshot's time; pieces behind the camera plane are cut off in 3D,
-// where barycentrics interpolate linearly, so the kept part still knows its surface points.
-void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdePropagator* ode,
-               const FragmentTriangle& t, FragmentRef ref, float weight, ReclipScratch& scratch, ReclipStats& stats) {
+// Moves fragment triangle `ref` to the re-clip's time and adds it to the screen triangles, weighted by its
+// layer's share (frame 0: 1 - f, frame 1: f); pieces behind the camera plane are cut off in 3D, where
+// barycentrics interpolate linearly, so the kept part still knows its surface points.
+void propagate(const TileReclip& tile, const ReclipTime& at, FragmentRef ref, ReclipScratch& scratch,
+               ReclipStats& stats) {
+    const MotionSnapshot& snapshot = at.snapshot;
+    const OdePropagator* ode = tile.layers.ode;
+    const FragmentTriangle& t = (*tile.layers.triangles[ref.layer])[ref.index];
+    const float weight = static_cast<float>(ref.layer == 0 ? 1.0 - at.fraction : at.fraction);
+    const auto add = [&](const std::array<glm::dvec3, 3>& world, const SourceTriangle& source) {
+        ScreenTriangle s;
+        for (int i = 0; i < 3; ++i) {
+            const ImagePoint ip = projectToImagePlane(snapshot.camera, world[i]);
+            s.raster[i] = snapshot.projection.toRaster(ip.p);
+            s.inv_depth[i] = 1.0 / ip.depth;
+        }
+        s.source = static_cast<std::uint32_t>(scratch.screen.size());
+        s.layer = ref.layer;
+        s.weight = weight;
+        scratch.screen.push_back(s);
+        scratch.origin.push_back(ref);
+        scratch.sources.push_back(source);
+    };
     std::array<glm::dvec3, 3> world;
     bool behind = false;
     for (int i = 0; i < 3; ++i) {
@@ -72,7 +75,7 @@ void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdeProp
             world[i] = *moved;
             behind = behind || glm::dot(snapshot.camera.e3, world[i] - snapshot.camera.position) < kNearDepth;
         } else {
-            const ProjectedPoint p = project(snapshot, scene, point);
+            const ProjectedPoint p = project(snapshot, tile.scene, point);
             world[i] = p.world;
             behind = behind || p.behind || p.depth < kNearDepth;
         }
@@ -82,14 +85,16 @@ void propagate(const Scene& scene, const MotionSnapshot& snapshot, const OdeProp
                                   world[2].x + world[2].y + world[2].z));
     ++stats.propagated;
     if (!behind) {
-        addScreenTriangle(snapshot, world, {t.object, t.triangle, t.bary}, ref, weight, scratch);
+        add(world, {t.object, t.triangle, t.bary});
         return;
     }
     ++stats.near_clipped;
-    std::array<glm::dvec3, 4> w, b;
-    const int n = clipToNearPlane(snapshot.camera, kNearDepth, world, t.bary, w, b);
-    if (n >= 3) addScreenTriangle(snapshot, {w[0], w[1], w[2]}, {t.object, t.triangle, {b[0], b[1], b[2]}}, ref, weight, scratch);
-    if (n == 4) addScreenTriangle(snapshot, {w[0], w[2], w[3]}, {t.object, t.triangle, {b[0], b[2], b[3]}}, ref, weight, scratch);
+    const NearClipped c = clipToNearPlane(snapshot.camera, kNearDepth, world, t.bary);
+    const int n = c.count;
+    const auto& w = c.world;
+    const auto& b = c.bary;
+    if (n >= 3) add({w[0], w[1], w[2]}, {t.object, t.triangle, {b[0], b[1], b[2]}});
+    if (n == 4) add({w[0], w[2], w[3]}, {t.object, t.triangle, {b[0], b[2], b[3]}});
 }
 
 // The path of the surface point seen at the fragment's centroid `at` over the interval: through its exact
@@ -102,8 +107,8 @@ std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& swee
     const MeshPoint point{source.object, source.triangle, bary};
     const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
     if (a.behind || b.behind) return std::nullopt;
-    if (!sweep.turns) return SweepPath::through(a.raster, a.depth, at, 1.0 / sample.inv_depth, b.raster, b.depth);
-    SweepPath path = SweepPath::through(a.raster, a.depth, at, 1.0 / sample.inv_depth, b.raster, b.depth,
+    if (!sweep.turns) return SweepPath::through({a.raster, a.depth}, {at, 1.0 / sample.inv_depth}, {b.raster, b.depth});
+    SweepPath path = SweepPath::through({a.raster, a.depth}, {at, 1.0 / sample.inv_depth}, {b.raster, b.depth},
                                         sweep.turns->unturn_begin, sweep.turns->unturn_end);
     path.turns = sweep.turns->at_positions;
     return path;
@@ -435,10 +440,7 @@ void reclipSubframe(const TileReclip& tile, const ReclipTime& at, ReclipScratch&
     scratch.screen.clear();
     scratch.origin.clear();
     scratch.sources.clear();
-    const std::array<float, 2> weights{static_cast<float>(1.0 - at.fraction), static_cast<float>(at.fraction)};
-    for (const FragmentRef ref : tile.refs)
-        propagate(tile.scene, at.snapshot, tile.layers.ode, (*tile.layers.triangles[ref.layer])[ref.index], ref,
-                  weights[ref.layer], scratch, stats);
+    for (const FragmentRef ref : tile.refs) propagate(tile, at, ref, scratch, stats);
 
     // Sweep: each screen triangle's stretch, computed when a fragment first needs it (NaN: not yet).
     if (at.sweep) scratch.stretch.assign(scratch.screen.size(), glm::dvec4(std::numeric_limits<double>::quiet_NaN()));

@@ -25,8 +25,10 @@ bool axisAlignedRectangle(const ConvexPolygon& q) {
 
 }  // namespace swept_detail
 
-SweepPath SweepPath::through(const glm::dvec2& a, double za, const glm::dvec2& m, double zm, const glm::dvec2& b,
-                             double zb, const glm::dmat3& unturn_a, const glm::dmat3& unturn_b) {
+SweepPath SweepPath::through(const PathPoint& pa, const PathPoint& pm, const PathPoint& pb, const glm::dmat3& unturn_a,
+                             const glm::dmat3& unturn_b) {
+    const glm::dvec2 &a = pa.raster, &m = pm.raster, &b = pb.raster;
+    const double za = pa.depth, zm = pm.depth, zb = pb.depth;
     // Homogeneous coordinates over zm, unturned: h(s) = (m w(s) + g(s), w(s)), g the offset numerator.
     const glm::dvec3 ha = unturn_a * glm::dvec3(a * (za / zm), za / zm), hb = unturn_b * glm::dvec3(b * (zb / zm), zb / zm);
     const glm::dvec2 ga = glm::dvec2(ha) - m * ha.z, gb = glm::dvec2(hb) - m * hb.z;

@@ -39,6 +39,12 @@ struct PixelWeight {
 // stretch_bend) / (depth ratio at s), through 1 at s = 0 and the surface's stretch at the ends, so a
 // fragment on a surface the camera dollies away from shrinks with it (exactly so for a surface facing
 // the camera).
+// A point's raster position and camera depth at one time of its path.
+struct PathPoint {
+    glm::dvec2 raster{0.0};
+    double depth = 1.0;
+};
+
 struct SweepPath {
     glm::dvec2 chord{0.0};
     glm::dvec2 bend{0.0};
@@ -48,18 +54,17 @@ struct SweepPath {
     double depth_chord = 0.0;
     double depth_bend = 0.0;
     double depth_open = 1.0, depth_close = 1.0;  // the point's depth at s = -1/2 and 1/2 over its depth at 0
-    std::span<const glm::dmat3> turns;           // empty, or the camera's turn at each swept position
+    std::span<const glm::dmat3> turns{};         // empty, or the camera's turn at each swept position
     // The exact offsets at s = -1/2 and 1/2 and the stretch there (through, setStretch): with turns, reach
     // and sweptBounds bound the path by the hull of the raster parabola through them instead.
     glm::dvec2 open_offset{0.0}, close_offset{0.0};
     glm::dvec2 open_stretch{1.0}, close_stretch{1.0};
 
-    // The path of a point at raster positions a, m, b and depths za, zm, zb (all > 0) at s = -1/2, 0, 1/2;
+    // The path of a point at a, m, b (depths > 0) at s = -1/2, 0, 1/2;
     // with a turning camera, unturn_a and unturn_b take homogeneous coordinates at the ends back to the
     // camera's orientation at s = 0 (the inverses of cameraTurn there).
-    static SweepPath through(const glm::dvec2& a, double za, const glm::dvec2& m, double zm, const glm::dvec2& b,
-                             double zb, const glm::dmat3& unturn_a = glm::dmat3(1.0),
-                             const glm::dmat3& unturn_b = glm::dmat3(1.0));
+    static SweepPath through(const PathPoint& a, const PathPoint& m, const PathPoint& b,
+                             const glm::dmat3& unturn_a = glm::dmat3(1.0), const glm::dmat3& unturn_b = glm::dmat3(1.0));
     double depthAt(double s) const { return 1.0 + s * depth_chord + (4.0 * s * s) * depth_bend; }
     // Offset and stretch at s, the camera turned by `turn` there (null: no turn), with one division.
     void place(double s, const glm::dmat3* turn, glm::dvec2& offset, glm::dvec2& stretch) const {

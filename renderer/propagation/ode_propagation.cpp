@@ -8,9 +8,9 @@
 namespace clipblur {
 
 OdePropagator::OdePropagator(const Scene& scene, const Projection& projection, double ts, double te,
-                             OdeMethod method, int steps)
+                             const OdeStepping& stepping)
     : scene_(scene), start_(scene, projection, ts), end_(scene, projection, te),
-      camera_(start_.camera, end_.camera), ts_(ts), te_(te), method_(method), steps_(std::max(1, steps)) {}
+      camera_(start_.camera, end_.camera), ts_(ts), te_(te), stepping_{stepping.method, std::max(1, stepping.steps)} {}
 
 std::optional<glm::dvec3> OdePropagator::propagate(const MeshPoint& point, int from, double t) const {
     const ProjectedPoint a = project(start_, scene_, point);
@@ -19,10 +19,10 @@ std::optional<glm::dvec3> OdePropagator::propagate(const MeshPoint& point, int f
     const VertexOde ode(VertexPath(camera_, a.world, b.world));
     const double f0 = from;
     const double f = (t - ts_) / (te_ - ts_);
-    const int steps = std::max(1, static_cast<int>(std::ceil(steps_ * std::abs(f - f0) - 1e-9)));
+    const int steps = std::max(1, static_cast<int>(std::ceil(stepping_.steps * std::abs(f - f0) - 1e-9)));
     glm::dvec3 y;
     try {
-        y = f == f0 ? ode.exactState(f0) : integrateFixed(ode, method_, f0, ode.exactState(f0), f, steps);
+        y = f == f0 ? ode.exactState(f0) : integrateFixed(ode, {stepping_.method, steps}, f0, ode.exactState(f0), f);
     } catch (const Error&) {
         return std::nullopt;  // the state crossed the camera plane
     }

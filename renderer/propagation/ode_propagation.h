@@ -19,8 +19,7 @@ class OdePropagator {
 public:
     // `steps` are ODE steps over the whole segment; a subframe at distance |df| from the start end
     // integrates ceil(steps |df|) of them (at least one).
-    OdePropagator(const Scene& scene, const Projection& projection, double ts, double te, OdeMethod method,
-                  int steps);
+    OdePropagator(const Scene& scene, const Projection& projection, double ts, double te, const OdeStepping& stepping);
 
     // World position at time t of the point integrated from segment end `from` (0: ts, 1: te); empty
     // when the point is not in front of the camera at that end or the integration crosses the camera
@@ -34,8 +33,7 @@ private:
     CameraMotion camera_;
     double ts_;
     double te_;
-    OdeMethod method_;
-    int steps_;
+    OdeStepping stepping_;
 };
 
 }  // namespace clipblur

@@ -49,8 +49,8 @@ void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::d
 }  // namespace
 
 ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
-                                       int intervals_per_piece, double near_depth)
-    : scene_(&scene), middle_(scene, projection, 0.5 * (t0 + t1), near_depth), duration_(std::max(0.0, t1 - t0)) {
+                                       int intervals_per_piece)
+    : scene_(&scene), middle_(scene, projection, 0.5 * (t0 + t1)), duration_(std::max(0.0, t1 - t0)) {
     breakpoints_.push_back(t0);
     addKeyTimes(breakpoints_, t0, t1, scene.camera.keys);
     for (const Object& object : scene.objects) {
@@ -66,7 +66,7 @@ ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& pro
     const double gl_nodes[3] = {-gl_x, 0.0, gl_x};
     const double gl_weights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
     const int intervals = std::max(1, intervals_per_piece);
-    auto add = [&](double t, double weight) { nodes_.push_back({MotionSnapshot(scene, projection, t, near_depth), weight}); };
+    auto add = [&](double t, double weight) { nodes_.push_back({MotionSnapshot(scene, projection, t), weight}); };
     for (std::size_t p = 0; p + 1 < breakpoints_.size(); ++p) {
         const double a = breakpoints_[p];
         const double h = (breakpoints_[p + 1] - a) / intervals;
@@ -139,8 +139,8 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
                 // What a one-interval sweep follows (SweepPath: the homogeneous parabola through the
                 // positions and depths at open, mid-shutter and close, with the camera's turn taken out
                 // and put back), at u = s + 1/2.
-                const SweepPath path = SweepPath::through(a, positions.front().z, mid.raster, mid.depth, b,
-                                                          positions.back().z, unturn_open_, unturn_close_);
+                const SweepPath path = SweepPath::through({a, positions.front().z}, {mid.raster, mid.depth},
+                                                          {b, positions.back().z}, unturn_open_, unturn_close_);
                 if (turns_.empty() && !std::isfinite(path.reach()))
                     out.parabola_deviation = std::numeric_limits<double>::infinity();
                 for (std::size_t i = 0; i < nodes_.size(); ++i) {

@@ -55,7 +55,7 @@ struct FragmentMotion {
 class ShutterPathSampler {
 public:
     ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
-                       int intervals_per_piece = 8, double near_depth = kDefaultNearDepth);
+                       int intervals_per_piece = 8);
 
     // Path length in pixels: integral of |d raster/dt| over the shutter. Parts of the path at or behind
     // the near depth are left out (the point is not on the image there).

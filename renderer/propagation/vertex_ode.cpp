@@ -62,8 +62,10 @@ double errorNorm(const glm::dvec3& diff, const glm::dvec3& y) {
 
 }  // namespace
 
-glm::dvec3 integrateFixed(const VertexOde& ode, OdeMethod method, double f0, const glm::dvec3& y0, double f1,
-                          int steps) {
+glm::dvec3 integrateFixed(const VertexOde& ode, const OdeStepping& stepping, double f0, const glm::dvec3& y0,
+                          double f1) {
+    const OdeMethod method = stepping.method;
+    const int steps = stepping.steps;
     if (steps < 1) throwRenderError("ODE step count must be at least 1, got " + std::to_string(steps));
     const double h = (f1 - f0) / steps;
     glm::dvec3 y = y0;
@@ -78,7 +80,8 @@ glm::dvec3 integrateFixed(const VertexOde& ode, OdeMethod method, double f0, con
 }
 
 AdaptiveResult integrateAdaptive(const VertexOde& ode, double f0, const glm::dvec3& y0, double f1,
-                                 double tolerance, int max_steps) {
+                                 double tolerance) {
+    constexpr int max_steps = kMaxAdaptiveSteps;
     if (!(tolerance > 0.0)) throwRenderError("ODE tolerance must be positive");
     AdaptiveResult result;
     result.y = y0;

@@ -28,11 +28,17 @@ private:
 
 enum class OdeMethod { Euler, Rk4 };
 
-// Fixed-step integration from (f0, y0) to f1 in `steps` equal steps; f1 < f0 integrates backward, as
-// needed for triangles propagated from the end of the frame. Throws a Render error when steps < 1 or
-// the state stops being finite (the vertex crossed the camera plane).
-glm::dvec3 integrateFixed(const VertexOde& ode, OdeMethod method, double f0, const glm::dvec3& y0, double f1,
-                          int steps);
+// A fixed-step integrator: the method and how many equal steps.
+struct OdeStepping {
+    OdeMethod method = OdeMethod::Rk4;
+    int steps = 1;
+};
+
+// Fixed-step integration from (f0, y0) to f1; f1 < f0 integrates backward, as needed for triangles
+// propagated from the end of the frame. Throws a Render error when steps < 1 or the state stops being
+// finite (the vertex crossed the camera plane).
+glm::dvec3 integrateFixed(const VertexOde& ode, const OdeStepping& stepping, double f0, const glm::dvec3& y0,
+                          double f1);
 
 struct AdaptiveResult {
     glm::dvec3 y{0.0};
@@ -44,8 +50,8 @@ struct AdaptiveResult {
 // RK4 with step doubling: each step is compared with two half steps, the local error estimate is
 // |y_half - y_full| / 15 in the norm max(|dp1|, |dp2|, |dz| / |z|), and the Richardson-extrapolated
 // (fifth-order) value is kept. Tolerance is per step. Throws a Render error when the step size underflows
-// or the step budget (max_steps) is exhausted.
-AdaptiveResult integrateAdaptive(const VertexOde& ode, double f0, const glm::dvec3& y0, double f1,
-                                 double tolerance, int max_steps = 100000);
+// or the step budget (kMaxAdaptiveSteps) is exhausted.
+inline constexpr int kMaxAdaptiveSteps = 100000;
+AdaptiveResult integrateAdaptive(const VertexOde& ode, double f0, const glm::dvec3& y0, double f1, double tolerance);
 
 }  // namespace clipblur

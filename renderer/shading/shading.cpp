@@ -49,14 +49,14 @@ glm::dvec3 lightIrradiance(const Light& light, const glm::dvec3& position, const
     return light.intensity * light.color * cosine / dist2;
 }
 
-Shader::Shader(const Scene& scene, double t0, double t1, const EmbreeScene* shadows)
-    : scene_(scene), shadows_(shadows), static_world_(scene.objects.size()) {
-    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-        const Object& object = scene.objects[o];
-        if (!isStatic(object, t0, t1)) continue;
+Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows)
+    : scene_(motion.scene()), motion_(motion), shadows_(shadows), static_world_(scene_.objects.size()) {
+    for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
+        const Object& object = scene_.objects[o];
+        if (!motion.shutter().objectStill(o)) continue;
         auto& world = static_world_[o];
         world.resize(object.mesh.positions.size());
-        for (std::size_t i = 0; i < world.size(); ++i) world[i] = evalVertex(object, static_cast<std::uint32_t>(i), t0);
+        for (std::size_t i = 0; i < world.size(); ++i) world[i] = evalVertex(object, static_cast<std::uint32_t>(i), motion.t0());
     }
 }
 
@@ -78,7 +78,7 @@ SurfaceGeometry Shader::geometry(const SurfacePoint& sp) const {
         for (int k = 0; k < 3; ++k) v[k] = cached[tri[k]];
     } else if (object.deformation.empty()) {
         // Same arithmetic as evalVertex, with the transform evaluated once for the three vertices.
-        const RigidTransform x = evalTransform(object.transform, sp.time);
+        const RigidTransform x = motion_.transform(static_cast<std::size_t>(sp.object), sp.time);
         for (int k = 0; k < 3; ++k) v[k] = x.apply(object.mesh.positions[tri[k]]);
     } else {
         for (int k = 0; k < 3; ++k) v[k] = evalVertex(object, tri[k], sp.time);

@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/frame_motion.h"
 #include "scene/scene.h"
 
 namespace clipblur {
@@ -37,9 +38,9 @@ struct SurfaceGeometry {
 // whenever its front is clipped or missing, and black makes wrong winding obvious.
 class Shader {
 public:
-    // Precomputes world positions of objects that do not move during [t0, t1]. With `shadows` set,
-    // each light is tested for occlusion with a shadow ray at the point's time.
-    Shader(const Scene& scene, double t0, double t1, const EmbreeScene* shadows = nullptr);
+    // Precomputes world positions of objects that do not move during the frame's shutter. With `shadows`
+    // set, each light is tested for occlusion with a shadow ray at the point's time.
+    explicit Shader(const FrameMotion& motion, const EmbreeScene* shadows = nullptr);
 
     SurfaceGeometry geometry(const SurfacePoint& point) const;
     // The point on the rest mesh (what textures read): no motion to evaluate.
@@ -58,6 +59,7 @@ public:
 
 private:
     const Scene& scene_;
+    const FrameMotion& motion_;
     const EmbreeScene* shadows_;
     std::vector<std::vector<glm::dvec3>> static_world_;  // per object; empty when the object moves
 };

@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include "renderer/camera_path.h"
+#include "renderer/frame_motion.h"
 #include "renderer/sampling/pixel_samples.h"
 #include "renderer/shading/shading.h"
 #include "renderer/stopwatch.h"
@@ -47,20 +48,20 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     const double t0 = frame + job.shutter.open;
     const double t1 = frame + job.shutter.close;
 
+    const FrameMotion motion(scene, t0, t1);
     EmbreeDevice device;
-    const EmbreeScene visibility(device, scene, t0, t1);
-    const Shader shader(scene, t0, t1, job.render.shadows ? &visibility : nullptr);
+    const EmbreeScene visibility(device, motion);
+    const Shader shader(motion, job.render.shadows ? &visibility : nullptr);
     const double build_seconds = secondsSince(start);
 
     const Projection projection(width, height, scene.camera.vfov_degrees);
-    const CameraPath camera_path(scene.camera);
     // Per ray the camera comes from a table, not from trigonometry (its bound: camera_path.h).
-    const CameraTable camera_table(camera_path, t0, t1, kCameraTableSteps);
-    const CameraFrame camera_open = camera_path.at(t0);
-    const CameraFrame camera_close = camera_path.at(t1);
+    const CameraTable camera_table(motion.cameraPath(), t0, t1, kCameraTableSteps);
+    const CameraFrame camera_open = motion.camera(t0);
+    const CameraFrame camera_close = motion.camera(t1);
     // The depth AOV is what is seen at mid-shutter: each sample's spatial position traced again at that time.
     const double t_mid = 0.5 * (t0 + t1);
-    const CameraFrame camera_mid = camera_path.at(t_mid);
+    const CameraFrame camera_mid = motion.camera(t_mid);
     // Tiles cover the render window only; every pixel's samples are keyed by its film position, so a
     // window renders exactly the pixels the whole film would.
     const PixelBounds window = renderWindow(job);

@@ -66,17 +66,18 @@ bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binne
     return false;
 }
 
-void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const MeshAdjacency& adjacency,
-                    const Projection& projection, const PixelBounds& tile, int tile_index, int rays_per_side,
-                    CandidateScratch& scratch, std::vector<std::uint32_t>& out, CandidateStats& stats) {
-    out.clear();
+std::vector<std::uint32_t> findCandidates(const FrameGeometry& frame, const CandidateRays& rays, int tile_index,
+                                          CandidateScratch& scratch, CandidateStats& stats) {
+    std::vector<std::uint32_t> out;
+    const PixelBounds tile = frame.tile(tile_index);
+    const int rays_per_side = rays.per_side;
     const auto binned = frame.tileTriangles(tile_index);
     stats.binned += static_cast<long long>(binned.size());
     if (!raysPayOff(frame, binned, tile, rays_per_side)) {
         out.assign(binned.begin(), binned.end());
         stats.candidates += static_cast<long long>(out.size());
         if (rays_per_side > 0) ++stats.exhaustive_tiles;
-        return;
+        return out;
     }
 
     const CameraFrame& camera = frame.camera();
@@ -86,9 +87,9 @@ void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const
         for (int x = tile.x0 - 1; x <= tile.x1; ++x) {
             for (int j = 0; j < n; ++j) {
                 for (int i = 0; i < n; ++i) {
-                    const glm::dvec2 p = projection.toImagePlane({x + (i + 0.5) / n, y + (j + 0.5) / n});
+                    const glm::dvec2 p = frame.projection().toImagePlane({x + (i + 0.5) / n, y + (j + 0.5) / n});
                     const glm::dvec3 dir = camera.e3 + p.x * camera.e1 + p.y * camera.e2;
-                    const EmbreeHit hit = embree.intersect(camera.position, dir, frame.time());
+                    const EmbreeHit hit = rays.embree.intersect(camera.position, dir, frame.time());
                     ++stats.rays;
                     if (hit.hit) scratch.hits.push_back(key(static_cast<std::uint32_t>(hit.object), hit.triangle));
                 }
@@ -101,7 +102,7 @@ void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const
     scratch.ring = scratch.hits;
     for (std::uint64_t h : scratch.hits) {
         const auto object = static_cast<std::uint32_t>(h >> 32);
-        adjacency.forEachNeighbour(object, static_cast<std::uint32_t>(h), [&](std::uint32_t t) {
+        rays.adjacency.forEachNeighbour(object, static_cast<std::uint32_t>(h), [&](std::uint32_t t) {
             scratch.ring.push_back(key(object, t));
         });
     }
@@ -120,6 +121,7 @@ void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const
     std::set_intersection(out.begin(), out.end(), binned.begin(), binned.end(), std::back_inserter(kept));
     out.swap(kept);
     stats.candidates += static_cast<long long>(out.size());
+    return out;
 }
 
 }  // namespace clipblur

@@ -51,6 +51,14 @@ struct CandidateStats {
     friend bool operator==(const CandidateStats&, const CandidateStats&) = default;
 };
 
+// The Embree rays that narrow a tile's candidates: the scene they hit, the mesh one-rings added around
+// each hit, and rays per pixel side (0: no rays, every binned triangle).
+struct CandidateRays {
+    const EmbreeScene& embree;
+    const MeshAdjacency& adjacency;
+    int per_side = 2;
+};
+
 struct CandidateScratch {
     std::vector<std::uint64_t> hits;
     std::vector<std::uint64_t> ring;
@@ -65,7 +73,7 @@ struct CandidateScratch {
 bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binned, const PixelBounds& tile,
                 int rays_per_side);
 
-// The screen triangles of `tile` that the clipper must see at the frame's time.
+// The screen triangles of tile `tile_index` of the frame's grid that the clipper must see at the frame's time.
 //
 // rays_per_side == 0, or rays would not pay off (raysPayOff): every triangle whose bounding box
 // overlaps the tile (exact, the oracle). Otherwise Embree traces rays_per_side^2 rays per pixel over
@@ -74,8 +82,7 @@ bool raysPayOff(const FrameGeometry& frame, std::span<const std::uint32_t> binne
 // triangle whose inscribed circle is narrower than the ray grid's cell diagonal (it may fit between
 // rays at any angle). What this can still miss is a large triangle seen only through a gap narrower
 // than the ray spacing and not adjacent to a hit; docs/design.md measures it.
-void findCandidates(const FrameGeometry& frame, const EmbreeScene& embree, const MeshAdjacency& adjacency,
-                    const Projection& projection, const PixelBounds& tile, int tile_index, int rays_per_side,
-                    CandidateScratch& scratch, std::vector<std::uint32_t>& out, CandidateStats& stats);
+std::vector<std::uint32_t> findCandidates(const FrameGeometry& frame, const CandidateRays& rays, int tile_index,
+                                          CandidateScratch& scratch, CandidateStats& stats);
 
 }  // namespace clipblur

@@ -32,19 +32,6 @@ private:
     RTCGeometry geometry_;
 };
 
-// World positions of every vertex at time t, exactly as evalVertex gives them; the rigid case evaluates
-// the transform once instead of per vertex.
-void positionsAt(const Object& object, double t, std::vector<glm::dvec3>& out) {
-    const std::size_t n = object.mesh.positions.size();
-    out.resize(n);
-    if (object.deformation.empty()) {
-        const RigidTransform x = evalTransform(object.transform, t);
-        for (std::size_t i = 0; i < n; ++i) out[i] = x.apply(object.mesh.positions[i]);
-    } else {
-        for (std::size_t i = 0; i < n; ++i) out[i] = evalVertex(object, static_cast<std::uint32_t>(i), t);
-    }
-}
-
 // Largest image-plane deviation, in pixels, between the true positions at a segment's midpoint time and
 // the chord midpoints. With d = x - camera and depth z = e3.d, the image point is p = (e1.d, e2.d)/z and a
 // displacement D moves it by |dp| <= |D| (1 + |p|) / z. Vertices behind the camera have no image point
@@ -82,9 +69,10 @@ void checkMesh(const Object& object) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1,
-                         const std::vector<char>* leave_out)
-    : t0_(t0), t1_(t1) {
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const FrameMotion& motion, const std::vector<char>* leave_out)
+    : t0_(motion.t0()), t1_(motion.t1()) {
+    const Scene& scene = motion.scene();
+    const double t0 = t0_, t1 = t1_;
     if (!(t1 >= t0)) throw Error(ExitCode::Render, "shutter window must satisfy t0 <= t1");
     scene_.reset(rtcNewScene(device.get()));
     device.check("creating a scene");
@@ -102,12 +90,12 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double 
         const std::size_t nv = object.mesh.positions.size();
 
         steps.assign(1, {});
-        positionsAt(object, t0, steps[0]);
+        motion.vertices(o, t0, steps[0]);
         stats_.vertex_evaluations += static_cast<long long>(nv);
-        if (t1 > t0 && !isStatic(object, t0, t1)) {
+        if (t1 > t0 && !motion.shutter().objectStill(o)) {
             ++stats_.moving_objects;
             steps.resize(2);
-            positionsAt(object, t1, steps[1]);
+            motion.vertices(o, t1, steps[1]);
             stats_.vertex_evaluations += static_cast<long long>(nv);
             while (true) {
                 const std::size_t segments = steps.size() - 1;
@@ -115,10 +103,10 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, double 
                 double worst = 0.0;
                 for (std::size_t s = 0; s < segments; ++s) {
                     const double tm = t0 + (t1 - t0) * (static_cast<double>(s) + 0.5) / static_cast<double>(segments);
-                    positionsAt(object, tm, mids[s]);
+                    motion.vertices(o, tm, mids[s]);
                     stats_.vertex_evaluations += static_cast<long long>(nv);
                     worst = std::max(worst, chordErrorPixels(steps[s], steps[s + 1], mids[s],
-                                                             evalCamera(scene.camera, tm), ppu));
+                                                             motion.camera(tm), ppu));
                 }
                 if (worst <= kMaxChordErrorPixels) break;
                 if (2 * segments + 1 > RTC_MAX_TIME_STEP_COUNT) {

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/visibility/embree_device.h"
+#include "renderer/frame_motion.h"
 #include "scene/scene.h"
 
 namespace clipblur {
@@ -31,8 +32,8 @@ struct EmbreeSceneStats {
     long long vertex_evaluations = 0;
 };
 
-// The scene over one shutter window [t0, t1] (absolute frames) as an Embree scene; ray time t maps to
-// Embree's [0, 1] linearly. t0 == t1 gives a still scene at that instant.
+// The scene over one frame's shutter window [t0, t1] (absolute frames) as an Embree scene; ray time t maps
+// to Embree's [0, 1] linearly. t0 == t1 gives a still scene at that instant.
 //
 // Moving objects are uploaded as time-stepped vertex buffers rather than as rigid instances with
 // rtcSetGeometryTransformQuaternion: steps handle deformation blur, non-uniform scale and several
@@ -48,8 +49,7 @@ public:
     static constexpr double kMaxChordErrorPixels = 0.1;
 
     // `leave_out` (per object, optional): objects not to add, such as a still backdrop rendered on its own.
-    EmbreeScene(const EmbreeDevice& device, const Scene& scene, double t0, double t1,
-                const std::vector<char>* leave_out = nullptr);
+    EmbreeScene(const EmbreeDevice& device, const FrameMotion& motion, const std::vector<char>* leave_out = nullptr);
     EmbreeScene(EmbreeScene&& other) noexcept = default;
     EmbreeScene& operator=(EmbreeScene&& other) noexcept = default;
     EmbreeScene(const EmbreeScene&) = delete;

@@ -8,11 +8,13 @@
 
 namespace clipblur {
 
-int clipToNearPlane(const CameraFrame& camera, double near, std::span<const glm::dvec3> world,
-                    std::span<const glm::dvec3> bary, std::array<glm::dvec3, 4>& world_out,
-                    std::array<glm::dvec3, 4>& bary_out) {
+NearClipped clipToNearPlane(const CameraFrame& camera, double near, std::span<const glm::dvec3> world,
+                            std::span<const glm::dvec3> bary) {
     const std::size_t n = world.size();
-    int count = 0;
+    NearClipped out;
+    int& count = out.count;
+    std::array<glm::dvec3, 4>& world_out = out.world;
+    std::array<glm::dvec3, 4>& bary_out = out.bary;
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t j = (i + 1) % n;
         const double di = glm::dot(camera.e3, world[i] - camera.position) - near;
@@ -27,18 +29,20 @@ int clipToNearPlane(const CameraFrame& camera, double near, std::span<const glm:
             bary_out[count++] = bary[i] + s * (bary[j] - bary[i]);
         }
     }
-    return count;
+    return out;
 }
 
-FrameGeometry::FrameGeometry(const Scene& scene, const Projection& projection, double time, const TileGrid& grid)
-    : time_(time), camera_(evalCamera(scene.camera, time)) {
+FrameGeometry::FrameGeometry(const FrameMotion& motion, const Projection& projection, double time,
+                             const TileGrid& grid)
+    : time_(time), projection_(projection), grid_(grid), camera_(motion.camera(time)) {
+    const Scene& scene = motion.scene();
     std::vector<glm::dvec3> world;
     object_base_.reserve(scene.objects.size() + 1);
     mesh_offsets_.push_back(0);
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
         const Object& object = scene.objects[o];
         object_base_.push_back(static_cast<std::uint32_t>(mesh_offsets_.size() - 1));
-        evalVertices(object, time, world);
+        motion.vertices(o, time, world);
         for (std::uint32_t t = 0; t < object.mesh.triangles.size(); ++t) {
             const auto& idx = object.mesh.triangles[t];
             addTriangle(o, t, {world[idx[0]], world[idx[1]], world[idx[2]]}, projection);
@@ -89,8 +93,10 @@ void FrameGeometry::addTriangle(std::uint32_t object, std::uint32_t triangle, co
         emit(object, triangle, world, corners, projection);
         return;
     }
-    std::array<glm::dvec3, 4> w, b;
-    const int n = clipToNearPlane(camera_, kNearDepth, world, corners, w, b);
+    const NearClipped c = clipToNearPlane(camera_, kNearDepth, world, corners);
+    const int n = c.count;
+    const auto& w = c.world;
+    const auto& b = c.bary;
     if (n == 0) return;
     ++near_clipped_;
     emit(object, triangle, {w[0], w[1], w[2]}, {b[0], b[1], b[2]}, projection);

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/fragments/screen_triangle.h"
+#include "renderer/frame_motion.h"
 #include "renderer/tiles.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -31,9 +32,11 @@ struct SourceTriangle {
 // the exhaustive candidate set; Embree's rays narrow it per tile (renderer/visibility/candidates.h).
 class FrameGeometry {
 public:
-    FrameGeometry(const Scene& scene, const Projection& projection, double time, const TileGrid& grid);
+    FrameGeometry(const FrameMotion& motion, const Projection& projection, double time, const TileGrid& grid);
 
     double time() const { return time_; }
+    const Projection& projection() const { return projection_; }
+    PixelBounds tile(int index) const { return grid_.tile(index); }
     const CameraFrame& camera() const { return camera_; }
     std::span<const ScreenTriangle> triangles() const { return triangles_; }
     const SourceTriangle& source(std::uint32_t screen_triangle) const { return sources_[screen_triangle]; }
@@ -55,6 +58,8 @@ private:
               const std::array<glm::dvec3, 3>& bary, const Projection& projection);
 
     double time_;
+    Projection projection_;
+    TileGrid grid_;
     CameraFrame camera_;
     std::vector<ScreenTriangle> triangles_;
     std::vector<SourceTriangle> sources_;
@@ -68,10 +73,17 @@ private:
     long long near_clipped_ = 0;
 };
 
+// A triangle's part at camera depth >= near: `count` vertices (0, 3 or 4), their world positions and
+// per-vertex attributes.
+struct NearClipped {
+    int count = 0;
+    std::array<glm::dvec3, 4> world{};
+    std::array<glm::dvec3, 4> bary{};
+};
+
 // Clips the polygon `world` (with per-vertex attributes `bary`) to camera depth >= near, in 3D, where
-// both interpolate linearly. Returns the vertex count (0, 3 or 4 for a triangle input).
-int clipToNearPlane(const CameraFrame& camera, double near, std::span<const glm::dvec3> world,
-                    std::span<const glm::dvec3> bary, std::array<glm::dvec3, 4>& world_out,
-                    std::array<glm::dvec3, 4>& bary_out);
+// both interpolate linearly.
+NearClipped clipToNearPlane(const CameraFrame& camera, double near, std::span<const glm::dvec3> world,
+                            std::span<const glm::dvec3> bary);
 
 }  // namespace clipblur

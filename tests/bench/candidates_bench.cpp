@@ -43,8 +43,9 @@ struct SphereFixture {
         sphere.mesh = makeSphere(1.0, segments);
         sphere.transform = {TransformKey{0.0, glm::dvec3(0, 0, 3.2)}, TransformKey{1.0, glm::dvec3(0.2, 0, 3.2)}};
         scene.objects.push_back(std::move(sphere));
-        embree = std::make_unique<EmbreeScene>(device, scene, 0.0, 1.0);
-        frame = std::make_unique<FrameGeometry>(scene, projection, 0.0, grid);
+        const FrameMotion motion(scene, 0.0, 1.0);
+        embree = std::make_unique<EmbreeScene>(device, motion);
+        frame = std::make_unique<FrameGeometry>(motion, projection, 0.0, grid);
         adjacency = std::make_unique<MeshAdjacency>(scene);
         for (int t = 0; t < grid.count(); ++t)
             if (!frame->tileTriangles(t).empty()) busy_tiles.push_back(t);
@@ -64,13 +65,12 @@ void BM_FindCandidates(benchmark::State& state) {
     const SphereFixture& f = SphereFixture::get(static_cast<int>(state.range(0)));
     const int rays_per_side = static_cast<int>(state.range(1));
     CandidateScratch scratch;
-    std::vector<std::uint32_t> out;
     CandidateStats stats;
     std::size_t i = 0;
     for (auto _ : state) {
         const int index = f.busy_tiles[i++ % f.busy_tiles.size()];
-        findCandidates(*f.frame, *f.embree, *f.adjacency, f.projection, f.grid.tile(index), index, rays_per_side,
-                       scratch, out, stats);
+        const std::vector<std::uint32_t> out =
+            findCandidates(*f.frame, {*f.embree, *f.adjacency, rays_per_side}, index, scratch, stats);
         benchmark::DoNotOptimize(out.data());
     }
     const double tiles = static_cast<double>(state.iterations());

@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
         const int width = scene.film.width, height = scene.film.height;
         const double t0 = job.frames.first + job.shutter.open, t1 = job.frames.first + job.shutter.close;
         EmbreeDevice device;
-        const EmbreeScene embree(device, scene, t0, t1);
+        const EmbreeScene embree(device, FrameMotion(scene, t0, t1));
         const std::vector<Key> keys = cameraKeys(scene.camera);
         const Projection projection(width, height, scene.camera.vfov_degrees);
         Image image = Image::make(width, height, {"R", "G", "B", "A"});

@@ -58,7 +58,7 @@ void BM_EmbreeSceneBuild(benchmark::State& state) {
     const RenderJob job = gridJob(static_cast<int>(state.range(0)), 1);
     const EmbreeDevice device;
     for (auto _ : state) {
-        const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+        const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0));
         benchmark::DoNotOptimize(scene.get());
     }
     state.counters["triangles"] = 2.0 * state.range(0) * state.range(0);

@@ -58,7 +58,7 @@ void BM_Rk4Path(benchmark::State& state) {
     const int steps = 20;
     for (auto _ : state) {
         for (const VertexOde& ode : odes) {
-            const glm::dvec3 y = integrateFixed(ode, OdeMethod::Rk4, 0.0, ode.exactState(0.0), 1.0, steps);
+            const glm::dvec3 y = integrateFixed(ode, {OdeMethod::Rk4, steps}, 0.0, ode.exactState(0.0), 1.0);
             benchmark::DoNotOptimize(y);
         }
     }

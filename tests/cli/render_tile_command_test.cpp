@@ -158,10 +158,10 @@ TEST(RenderTileResume, OnlyIncompleteShardsAreRenderedAgain) {
     // A node that died while copying: the header survives, the pixel chunks do not.
     const fs::path cut = shardPath(frame.string(), {1, 4});
     fs::resize_file(cut, fs::file_size(cut) / 2);
-    EXPECT_FALSE(shardIsComplete(cut, kWidth, kHeight, {1, 4}, ""));
+    EXPECT_FALSE(shardIsComplete(cut, {.width = kWidth, .height = kHeight, .shard = {1, 4}}));
     ASSERT_EQ(renderShard(dir, "stochastic", frame, {1, 4}), 0);
     EXPECT_EQ(readText(dir / "stdout.txt").find("skipped"), std::string::npos);
-    EXPECT_TRUE(shardIsComplete(cut, kWidth, kHeight, {1, 4}, ""));
+    EXPECT_TRUE(shardIsComplete(cut, {.width = kWidth, .height = kHeight, .shard = {1, 4}}));
 
     // Another seed is another config hash: that shard must not be mixed into this job's frame.
     ASSERT_EQ(renderShard(dir, "stochastic", frame, {2, 4}, " --set render.seed=99"), 0);

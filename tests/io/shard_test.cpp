@@ -147,14 +147,15 @@ TEST_F(ShardCheck, AcceptsMatchingShardAndRejectsEachMismatch) {
     const PixelBounds w = shardWindow(40, 30, shard);
     const fs::path good = dir / "good.exr";
     writeShard(good, 40, 30, w, "abc");
-    EXPECT_TRUE(shardIsComplete(good, 40, 30, shard, "abc", {"R", "G", "B", "A"}));
-    EXPECT_TRUE(shardIsComplete(good, 40, 30, shard, ""));  // hash not checked when not known
+    EXPECT_TRUE(shardIsComplete(
+        good, {.width = 40, .height = 30, .shard = shard, .config_hash = "abc", .channels = {"R", "G", "B", "A"}}));
+    EXPECT_TRUE(shardIsComplete(good, {.width = 40, .height = 30, .shard = shard}));  // hash not checked when not known
 
-    EXPECT_FALSE(shardIsComplete(good, 40, 30, shard, "abd"));
-    EXPECT_FALSE(shardIsComplete(good, 40, 30, {1, 4}, "abc"));   // another shard's window
-    EXPECT_FALSE(shardIsComplete(good, 40, 31, shard, "abc"));    // another display window
-    EXPECT_FALSE(shardIsComplete(good, 40, 30, shard, "abc", {"R", "G", "B", "A", "Z"}));
-    EXPECT_FALSE(shardIsComplete(dir / "absent.exr", 40, 30, shard, "abc"));
+    EXPECT_FALSE(shardIsComplete(good, {.width = 40, .height = 30, .shard = shard, .config_hash = "abd"}));
+    EXPECT_FALSE(shardIsComplete(good, {.width = 40, .height = 30, .shard = {1, 4}, .config_hash = "abc"}));   // another shard's window
+    EXPECT_FALSE(shardIsComplete(good, {.width = 40, .height = 31, .shard = shard, .config_hash = "abc"}));    // another display window
+    EXPECT_FALSE(shardIsComplete(good, {.width = 40, .height = 30, .shard = shard, .config_hash = "abc", .channels = {"R", "G", "B", "A", "Z"}}));
+    EXPECT_FALSE(shardIsComplete(dir / "absent.exr", {.width = 40, .height = 30, .shard = shard, .config_hash = "abc"}));
 
     ImageExpectation e{40, 30, w, "zzz", {}};
     const ImageCheck c = checkImage(good, e);
@@ -167,7 +168,7 @@ TEST_F(ShardCheck, TruncatedOrForeignFileIsIncomplete) {
     const PixelBounds w = PixelBounds::sized(0, 0, 64, 64);
     const fs::path good = dir / "full.exr";
     writeShard(good, 64, 64, w, "h", {"R", "G", "B", "A", "Z", "coverage"});
-    ASSERT_TRUE(shardIsComplete(good, 64, 64, shard, "h"));
+    ASSERT_TRUE(shardIsComplete(good, {.width = 64, .height = 64, .shard = shard, .config_hash = "h"}));
 
     // Keep the header and part of the pixel chunks, as a node dying mid-copy would.
     const auto size = fs::file_size(good);
@@ -175,13 +176,13 @@ TEST_F(ShardCheck, TruncatedOrForeignFileIsIncomplete) {
         const fs::path cut = dir / "cut.exr";
         fs::copy_file(good, cut, fs::copy_options::overwrite_existing);
         fs::resize_file(cut, static_cast<std::uintmax_t>(static_cast<double>(size) * keep));
-        EXPECT_FALSE(shardIsComplete(cut, 64, 64, shard, "h")) << keep;
+        EXPECT_FALSE(shardIsComplete(cut, {.width = 64, .height = 64, .shard = shard, .config_hash = "h"})) << keep;
     }
     const fs::path text = dir / "text.exr";
     std::ofstream(text) << "not an image";
-    EXPECT_FALSE(shardIsComplete(text, 64, 64, shard, "h"));
+    EXPECT_FALSE(shardIsComplete(text, {.width = 64, .height = 64, .shard = shard, .config_hash = "h"}));
     fs::create_directories(dir / "folder.exr");
-    EXPECT_FALSE(shardIsComplete(dir / "folder.exr", 64, 64, shard, "h"));
+    EXPECT_FALSE(shardIsComplete(dir / "folder.exr", {.width = 64, .height = 64, .shard = shard, .config_hash = "h"}));
 }
 
 }  // namespace clipblur

@@ -29,7 +29,7 @@ TEST(EmbreeScene, StillSceneHitsTheQuadAtItsDepth) {
     RenderJob job = test::squareFilmJob();
     job.scene.objects.push_back(test::rasterQuad(10, 10, 20, 20, 5.0));
     const EmbreeDevice device;
-    const EmbreeScene scene(device, job.scene, 0.0, 0.0);
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 0.0));
     EXPECT_EQ(scene.timeSteps(0), 1);
     const EmbreeHit hit = scene.intersect(glm::dvec3(0.0), test::worldAtRaster(15, 15, 1.0), 0.0);
     ASSERT_TRUE(hit.hit);
@@ -50,7 +50,7 @@ TEST(EmbreeScene, HitNormalPointsAlongTheTrianglesOwnCrossProduct) {
                      TransformKey{1.0, glm::dvec3(0, 0, 6), glm::angleAxis(0.6, glm::dvec3(0.3, 1, 0.2))}};
     job.scene.objects.push_back(tri);
     const EmbreeDevice device;
-    const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0));
     for (double t : {0.0, 0.37, 1.0}) {
         const EmbreeHit hit = scene.intersect(glm::dvec3(0.0), glm::dvec3(0.01, -0.02, 1.0), t);
         ASSERT_TRUE(hit.hit) << "t = " << t;
@@ -79,7 +79,7 @@ TEST(EmbreeScene, TranslationNeedsTwoStepsAndRotationMore) {
                       TransformKey{1.0, glm::dvec3(0, 0, 5), glm::angleAxis(M_PI / 2, glm::dvec3(0, 0, 1))}};
     job.scene.objects.push_back(spin);
     const EmbreeDevice device;
-    const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0));
     EXPECT_EQ(scene.timeSteps(0), 2);
     // Corner radius r = sqrt 2 at depth 5 with 128 px per unit; the sagitta of a 90/(n-1) degree chord is
     // r (1 - cos(theta/2)), times (1 + r/5) / 5 * 128 in pixels: 13.6 px (n = 2), 3.5 (3), 0.89 (5),
@@ -99,7 +99,7 @@ TEST(EmbreeScene, RotatingQuadIsHitWhereTheExactMotionPutsIt) {
                       TransformKey{1.0, glm::dvec3(0, 0, 5), glm::angleAxis(M_PI / 2, glm::dvec3(0, 0, 1))}};
     job.scene.objects.push_back(spin);
     const EmbreeDevice device;
-    const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0));
     // Aim at a point just inside corner 2 of the exactly rotated quad: 0.98 of the way from the centre
     // is 0.028 world units (0.7 px) inside, more than the 0.1 px chord bound, so it must be hit.
     for (int i = 0; i <= 20; ++i) {
@@ -123,7 +123,7 @@ TEST(EmbreeScene, CountsTrianglesEmbreeWouldDrop) {
     quad.mesh.triangles.push_back({0, 5, 1});
     job.scene.objects.push_back(quad);
     const EmbreeDevice device;
-    const EmbreeScene scene(device, job.scene, 0.0, 1.0);
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0));
     EXPECT_EQ(scene.stats().triangles, 4);
     EXPECT_EQ(scene.stats().dropped_triangles, 2);
 }
@@ -135,7 +135,7 @@ TEST(EmbreeScene, BadIndexIsASceneError) {
     job.scene.objects.push_back(quad);
     const EmbreeDevice device;
     try {
-        EmbreeScene scene(device, job.scene, 0.0, 1.0);
+        EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0));
         FAIL() << "expected an error";
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ExitCode::Scene);

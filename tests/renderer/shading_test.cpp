@@ -43,7 +43,8 @@ TEST(Shading, DirectionalLightAtSixtyDegrees) {
     // Travelling into the surface (+z) tilted 60 degrees from the normal: cos = 0.5.
     light.direction = {std::sin(M_PI / 3), 0.0, std::cos(M_PI / 3)};
     scene.lights.push_back(light);
-    const Shader shader(scene, 0.0, 1.0);
+    const FrameMotion motion(scene, 0.0, 1.0);
+    const Shader shader(motion);
     const SurfacePoint p{0, 0, 0.25, 0.25, 0.5};
     const glm::dvec3 eye(0.2, 0.2, -3.0);
     // albedo * (0.1 + 2 * color * 0.5)
@@ -59,7 +60,8 @@ TEST(Shading, PointLightFallsOffWithSquaredDistance) {
     // Surface point (u,v) = (0.25, 0.5): (1-u-v) v0 + u v1 + v v2 = (0.5, 0.25, 0).
     light.position = {0.5, 0.25, -2.0};  // straight above it at distance 2: 8 * 1 / 4 = 2
     scene.lights.push_back(light);
-    const Shader shader(scene, 0.0, 1.0);
+    const FrameMotion motion(scene, 0.0, 1.0);
+    const Shader shader(motion);
     const SurfacePoint p{0, 0, 0.25, 0.5, 0.0};
     const SurfaceGeometry g = shader.geometry(p);
     EXPECT_NEAR(g.position.x, 0.5, 1e-15);
@@ -75,11 +77,11 @@ TEST(Shading, BackFacesFlipWhenTwoSidedAndAreBlackWhenOneSided) {
     scene.lights.push_back(light);
     const SurfacePoint p{0, 0, 0.2, 0.2, 0.0};
     const glm::dvec3 behind(0.2, 0.2, 4.0);
-    expectColour(Shader(scene, 0, 1).shade(p, behind), glm::dvec3(0.5, 0.25, 1.0) * 1.1);
+    expectColour(Shader(FrameMotion(scene, 0, 1)).shade(p, behind), glm::dvec3(0.5, 0.25, 1.0) * 1.1);
     // Seen from the front, the back-side light does not reach the normal toward the eye: ambient only.
-    expectColour(Shader(scene, 0, 1).shade(p, glm::dvec3(0.2, 0.2, -4.0)), glm::dvec3(0.5, 0.25, 1.0) * 0.1);
+    expectColour(Shader(FrameMotion(scene, 0, 1)).shade(p, glm::dvec3(0.2, 0.2, -4.0)), glm::dvec3(0.5, 0.25, 1.0) * 0.1);
     scene.materials[0].two_sided = false;
-    expectColour(Shader(scene, 0, 1).shade(p, behind), glm::dvec3(0.0));
+    expectColour(Shader(FrameMotion(scene, 0, 1)).shade(p, behind), glm::dvec3(0.0));
 }
 
 TEST(Shading, CheckerAndStripeFollowFloorParity) {
@@ -108,7 +110,8 @@ TEST(Shading, TextureMovesWithTheObject) {
     scene.materials[0].texture = {Texture::Kind::Stripe, glm::dvec3(0.0), 0.5};
     // Translated by 0.5 in x over the frame: the world position moves, the rest position does not.
     scene.objects[0].transform = {TransformKey{0.0, glm::dvec3(0.0)}, TransformKey{1.0, glm::dvec3(0.5, 0, 0)}};
-    const Shader shader(scene, 0.0, 1.0);
+    const FrameMotion motion(scene, 0.0, 1.0);
+    const Shader shader(motion);
     const SurfacePoint early{0, 0, 0.1, 0.1, 0.0};  // rest x = 0.1 -> stripe 0 -> base colour
     SurfacePoint late = early;
     late.time = 1.0;
@@ -131,15 +134,17 @@ TEST(Shading, ShadowRayBlocksAPointLight) {
     blocker.mesh.triangles = {{0, 1, 2}};
     scene.objects.push_back(blocker);
     const EmbreeDevice device;
-    const EmbreeScene embree(device, scene, 0.0, 1.0);
-    const Shader shaded(scene, 0.0, 1.0, &embree);
+    const EmbreeScene embree(device, FrameMotion(scene, 0.0, 1.0));
+    const FrameMotion with_blocker(scene, 0.0, 1.0);
+    const Shader shaded(with_blocker, &embree);
     long long rays = 0;
     const SurfacePoint p{0, 0, 0.25, 0.25, 0.5};
     expectColour(shaded.shade(p, glm::dvec3(0.25, 0.25, -0.5), &rays), glm::dvec3(0.5, 0.25, 1.0) * 0.1);
     EXPECT_EQ(rays, 1);
     scene.objects.pop_back();
-    const EmbreeScene open(device, scene, 0.0, 1.0);
-    const Shader lit(scene, 0.0, 1.0, &open);
+    const EmbreeScene open(device, FrameMotion(scene, 0.0, 1.0));
+    const FrameMotion without(scene, 0.0, 1.0);
+    const Shader lit(without, &open);
     // Unblocked: 8 / 2^2 * cos 0 = 2.
     expectColour(lit.shade(p, glm::dvec3(0.25, 0.25, -0.5), &rays), glm::dvec3(0.5, 0.25, 1.0) * 2.1);
 }
@@ -151,7 +156,8 @@ TEST(Shading, SameFromBothEyesOnOneSideOfAStillFace) {
     Light light;
     light.direction = {0.3, -0.2, 1.0};
     scene.lights.push_back(light);
-    const Shader shader(scene, 0.0, 1.0);
+    const FrameMotion motion(scene, 0.0, 1.0);
+    const Shader shader(motion);
     const glm::dvec3 front_a(0.2, 0.3, -2.0), front_b(-3.0, 4.0, -0.5), back(0.2, 0.3, 1.0);
     EXPECT_TRUE(shader.sameFromBoth(0, 0, front_a, front_b));
     EXPECT_FALSE(shader.sameFromBoth(0, 0, front_a, back));
@@ -162,10 +168,10 @@ TEST(Shading, SameFromBothEyesOnOneSideOfAStillFace) {
     Scene moving = triangleScene();
     moving.objects[0].transform = {TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)},
                                    TransformKey{1.0, glm::dvec3(0.0, 0.0, 1.0), {1, 0, 0, 0}, glm::dvec3(1.0)}};
-    EXPECT_FALSE(Shader(moving, 0.0, 1.0).sameFromBoth(0, 0, front_a, front_b));
+    EXPECT_FALSE(Shader(FrameMotion(moving, 0.0, 1.0)).sameFromBoth(0, 0, front_a, front_b));
     const EmbreeDevice device;
-    const EmbreeScene embree(device, scene, 0.0, 1.0);
-    EXPECT_FALSE(Shader(scene, 0.0, 1.0, &embree).sameFromBoth(0, 0, front_a, front_b)) << "shadows may change";
+    const EmbreeScene embree(device, FrameMotion(scene, 0.0, 1.0));
+    EXPECT_FALSE(Shader(FrameMotion(scene, 0.0, 1.0), &embree).sameFromBoth(0, 0, front_a, front_b)) << "shadows may change";
 }
 
 }  // namespace clipblur

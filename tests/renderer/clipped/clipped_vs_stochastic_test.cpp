@@ -130,7 +130,7 @@ TEST(ShutterSegments, SingleSegmentMissesWhatBothEndsHide) {
     const RenderResult automatic = renderFrame(load({"render.method=clipped"}), 0);
     const RenderResult reference = renderFrame(load({"render.method=accumulation", "render.samples=64"}), 0);
     const RenderJob job = load({});
-    EXPECT_EQ(shutterSegments(job.scene, 0.0, 1.0, 0, job.render.max_segments), 6);  // 90 degrees / 15
+    EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 1.0), 0, job.render.max_segments), 6);  // 90 degrees / 15
     // The hidden-surface probe bisects the segments in which the hub still hides wall at both ends.
     EXPECT_GE(automatic.stats.clipped().segments, 6);
     EXPECT_GT(automatic.stats.clipped().hidden_probe_hits, 0);

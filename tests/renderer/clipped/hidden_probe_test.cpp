@@ -12,6 +12,7 @@
 
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
+#include "support/test_frame.h"
 
 namespace clipblur {
 
@@ -33,10 +34,6 @@ RenderJob crossingJob() {
     return job;
 }
 
-Projection projectionOf(const Scene& scene) {
-    return Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-}
-
 }  // namespace
 
 // At t = 0.5 the wall shows over columns [4, 12) and [20, 28) of rows [8, 24), hidden at both ends. The
@@ -44,22 +41,20 @@ Projection projectionOf(const Scene& scene) {
 // rows of each region, 64 points, of the 16 x 16 that all hit the wall or a quad.
 TEST(HiddenProbe, CountsTheWallTwoCrossingQuadsHideAtBothEnds) {
     const RenderJob job = crossingJob();
-    const EmbreeDevice device;
-    const EmbreeScene embree(device, job.scene, 0.0, 1.0);
-    const Projection projection = projectionOf(job.scene);
+    const test::TestFrame frame(job.scene, 0.0, 1.0);
     for (int offset : {0, 1}) {
-        const HiddenProbe probe = probeHiddenAtBothEnds(job.scene, embree, projection, 0.0, 1.0, 0.5, offset);
+        const HiddenProbe probe = probeHiddenAtBothEnds(frame.setup(), 0.0, 1.0, 0.5, offset);
         EXPECT_EQ(probe.samples, 256) << "offset " << offset;
         EXPECT_EQ(probe.hidden, 64) << "offset " << offset;
     }
     HiddenProbe total;
-    EXPECT_TRUE(hidesSomethingAtBothEnds(job.scene, embree, projection, 0.0, 1.0, total));
+    EXPECT_TRUE(hidesSomethingAtBothEnds(frame.setup(), 0.0, 1.0, total));
     EXPECT_EQ(total.hidden, 64);  // the middle probe finds it; the others are not run
     // Split at the middle, each half has the hole at one of its ends: at 0.5 nothing hidden at 0 is hidden
     // (the quads are both over [12, 20)), so nothing is hidden at both ends of [0, 0.5] or [0.5, 1].
     total = {};
-    EXPECT_FALSE(hidesSomethingAtBothEnds(job.scene, embree, projection, 0.0, 0.5, total));
-    EXPECT_FALSE(hidesSomethingAtBothEnds(job.scene, embree, projection, 0.5, 1.0, total));
+    EXPECT_FALSE(hidesSomethingAtBothEnds(frame.setup(), 0.0, 0.5, total));
+    EXPECT_FALSE(hidesSomethingAtBothEnds(frame.setup(), 0.5, 1.0, total));
     EXPECT_EQ(total.samples, 6 * 256);
     EXPECT_EQ(total.hidden, 0);
 }
@@ -71,15 +66,14 @@ TEST(HiddenProbe, CountsTheWallTwoCrossingQuadsHideAtBothEnds) {
 TEST(HiddenProbe, OneTranslatingQuadHidesNothingAtBothEnds) {
     std::mt19937 rng(20261123);
     std::uniform_real_distribution<double> corner(0.0, 24.0), size(2.0, 12.0), move(-20.0, 20.0), depth(3.0, 8.0);
-    const EmbreeDevice device;
     for (int trial = 0; trial < 20; ++trial) {
         RenderJob job = test::squareFilmJob();
         job.scene.objects.push_back(rasterQuad(-8.0, -8.0, 40.0, 40.0, 10.0));
         const double x0 = corner(rng), y0 = corner(rng);
         job.scene.objects.push_back(movingQuad(x0, y0, x0 + size(rng), y0 + size(rng), depth(rng), {move(rng), move(rng)}));
-        const EmbreeScene embree(device, job.scene, 0.0, 1.0);
+        const test::TestFrame frame(job.scene, 0.0, 1.0);
         HiddenProbe total;
-        EXPECT_FALSE(hidesSomethingAtBothEnds(job.scene, embree, projectionOf(job.scene), 0.0, 1.0, total)) << trial;
+        EXPECT_FALSE(hidesSomethingAtBothEnds(frame.setup(), 0.0, 1.0, total)) << trial;
         EXPECT_EQ(total.samples, 3 * 256) << trial;
     }
 }
@@ -87,19 +81,19 @@ TEST(HiddenProbe, OneTranslatingQuadHidesNothingAtBothEnds) {
 TEST(HiddenProbe, VisibilityChangesOnlyWhenTheEyeOrAnObjectMoves) {
     RenderJob job = test::squareFilmJob();
     job.scene.objects.push_back(rasterQuad(4.0, 4.0, 20.0, 20.0, 5.0));
-    EXPECT_FALSE(visibilityCanChange(job.scene, 0.0, 1.0));
+    EXPECT_FALSE(visibilityCanChange(FrameMotion(job.scene, 0.0, 1.0).shutter()));
     // Turning on the spot: the same surfaces from the same point.
     job.scene.camera.keys.push_back(CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0.1, 0, 1), glm::dvec3(0.1, 1, 0)});
-    EXPECT_FALSE(visibilityCanChange(job.scene, 0.0, 1.0));
+    EXPECT_FALSE(visibilityCanChange(FrameMotion(job.scene, 0.0, 1.0).shutter()));
     // An eye that leaves and comes back within the shutter.
     job.scene.camera.keys.back().time = 0.5;
     job.scene.camera.keys.back().position = glm::dvec3(0.0, 0.0, 1.0);
     job.scene.camera.keys.push_back(CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, 1, 0)});
-    EXPECT_TRUE(visibilityCanChange(job.scene, 0.0, 1.0));
-    EXPECT_FALSE(visibilityCanChange(job.scene, 1.0, 2.0));  // held after its last key
+    EXPECT_TRUE(visibilityCanChange(FrameMotion(job.scene, 0.0, 1.0).shutter()));
+    EXPECT_FALSE(visibilityCanChange(FrameMotion(job.scene, 1.0, 2.0).shutter()));  // held after its last key
     job.scene.camera.keys.resize(1);
     job.scene.objects.push_back(movingQuad(4.0, 4.0, 8.0, 8.0, 4.0, {3.0, 0.0}));
-    EXPECT_TRUE(visibilityCanChange(job.scene, 0.0, 1.0));
+    EXPECT_TRUE(visibilityCanChange(FrameMotion(job.scene, 0.0, 1.0).shutter()));
 }
 
 // Every surface is white over a white wall that fills the film, so the exact motion-blurred image is 1

@@ -48,7 +48,9 @@ TEST(SweepPositions, FollowEachIntervalsOwnMotion) {
 
     constexpr int kIntervals = 6;
     constexpr double kSpacing = 0.75;
-    const std::vector<int> positions = sweepPositions(scene, projection, layers, 0.0, 1.0, kIntervals, kSpacing, 1000);
+    const std::vector<int> positions = sweepPositions(
+        scene, projection, layers,
+        {.t0 = 0.0, .t1 = 1.0, .intervals = kIntervals, .spacing = kSpacing, .max_positions = 1000});
     ASSERT_EQ(positions.size(), std::size_t(kIntervals));
     for (int k = 0; k < kIntervals; ++k)
         EXPECT_EQ(positions[k], expectedPositions(scene, projection, k / double(kIntervals), (k + 1) / double(kIntervals), kSpacing))
@@ -70,7 +72,8 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
     layers.triangles = {&triangles, nullptr};
     // The two front vertices move 0.5 world units at depth 5: focal / 5 * 0.5 px, the same for both.
     const double focal = 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
-    const std::vector<int> positions = sweepPositions(scene, projection, layers, 0.0, 1.0, 1, 1.0, 1000);
+    const std::vector<int> positions = sweepPositions(
+        scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 1000});
     EXPECT_EQ(positions[0], static_cast<int>(std::ceil(focal / 5.0 * 0.5)));
 }
 

@@ -22,10 +22,10 @@ glm::dquat aboutY(double degrees) {
 TEST(ShutterSegments, StillSceneIsOneSegment) {
     RenderJob job = test::squareFilmJob();
     job.scene.objects.push_back(test::rasterQuad(2, 2, 20, 20, 5.0));
-    EXPECT_NEAR(largestTurn(job.scene, 0.0, 1.0), 0.0, 1e-12);
-    EXPECT_EQ(shutterSegments(job.scene, 0.0, 1.0, 0, 16), 1);
-    EXPECT_EQ(shutterSegments(job.scene, 0.0, 1.0, 4, 16), 4);   // requested counts are kept
-    EXPECT_EQ(shutterSegments(job.scene, 0.0, 1.0, 40, 16), 16);  // up to the cap
+    EXPECT_NEAR(FrameMotion(job.scene, 0.0, 1.0).largestTurn(), 0.0, 1e-12);
+    EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 1.0), 0, 16), 1);
+    EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 1.0), 4, 16), 4);   // requested counts are kept
+    EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 1.0), 40, 16), 16);  // up to the cap
 }
 
 // An object turning 90 degrees in two keys of 45 (slerp is a constant-rate turn): the summed angle is
@@ -37,9 +37,9 @@ TEST(ShutterSegments, ObjectTurnSetsTheCount) {
                       TransformKey{0.5, glm::dvec3(0.0), aboutY(45), glm::dvec3(1.0)},
                       TransformKey{1.0, glm::dvec3(0.0), aboutY(90), glm::dvec3(1.0)}};
     job.scene.objects.push_back(quad);
-    EXPECT_NEAR(largestTurn(job.scene, 0.0, 1.0), std::numbers::pi / 2, 1e-9);
-    EXPECT_EQ(shutterSegments(job.scene, 0.0, 1.0, 0, 16), 6);
-    EXPECT_EQ(shutterSegments(job.scene, 0.0, 0.5, 0, 16), 3);
+    EXPECT_NEAR(FrameMotion(job.scene, 0.0, 1.0).largestTurn(), std::numbers::pi / 2, 1e-9);
+    EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 1.0), 0, 16), 6);
+    EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 0.5), 0, 16), 3);
 }
 
 // A camera yawing 100 degrees: the basis turns by the angle between the view directions.
@@ -49,8 +49,8 @@ TEST(ShutterSegments, CameraTurnSetsTheCount) {
     const double a = 100.0 * std::numbers::pi / 180.0;
     job.scene.camera.keys.push_back(
         CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(std::sin(a), 0, std::cos(a)), glm::dvec3(0, 1, 0)});
-    EXPECT_NEAR(largestTurn(job.scene, 0.0, 1.0), a, 1e-9);
-    EXPECT_EQ(shutterSegments(job.scene, 0.0, 1.0, 0, 16), 7);
+    EXPECT_NEAR(FrameMotion(job.scene, 0.0, 1.0).largestTurn(), a, 1e-9);
+    EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 1.0), 0, 16), 7);
 }
 
 // Neighbouring segments meet at one time, so the set closing one opens the next: S segments build S + 1

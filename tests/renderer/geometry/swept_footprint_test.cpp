@@ -149,7 +149,7 @@ TEST(SweepPath, ThroughFollowsATranslatingPointExactly) {
             const glm::dvec3 p = point(s);
             return c + f * glm::dvec2(p.x / p.z, -p.y / p.z);
         };
-        SweepPath path = SweepPath::through(raster(-0.5), point(-0.5).z, raster(0.0), p0.z, raster(0.5), point(0.5).z);
+        SweepPath path = SweepPath::through({raster(-0.5), point(-0.5).z}, {raster(0.0), p0.z}, {raster(0.5), point(0.5).z});
         path.setStretch(glm::dvec2(p0.z / point(-0.5).z), glm::dvec2(p0.z / point(0.5).z));
         const SweepPath flat{raster(0.5) - raster(-0.5), 0.5 * (raster(-0.5) + raster(0.5)) - raster(0.0)};
         for (int i = 0; i <= 20; ++i) {
@@ -245,8 +245,8 @@ TEST(SweepPath, TurnsFollowATurningMovingCameraExactly) {
             return centre + f * glm::dvec2(p.x / p.z, -p.y / p.z);
         };
         const auto turn = [&](double s) { return K * glm::transpose(rotation(s)) * rotation(0.0) * glm::inverse(K); };
-        SweepPath path = SweepPath::through(raster(-0.5), camera(-0.5).z, raster(0.0), camera(0.0).z, raster(0.5),
-                                            camera(0.5).z, glm::inverse(turn(-0.5)), glm::inverse(turn(0.5)));
+        SweepPath path = SweepPath::through({raster(-0.5), camera(-0.5).z}, {raster(0.0), camera(0.0).z},
+                                            {raster(0.5), camera(0.5).z}, glm::inverse(turn(-0.5)), glm::inverse(turn(0.5)));
         for (int i = 0; i <= 20; ++i) {
             const double s = i / 20.0 - 0.5;
             const glm::dmat3 t = turn(s);

@@ -23,7 +23,7 @@ RenderJob table1(const std::string& name, std::vector<std::string> overrides = {
 double worstError(const RenderJob& job, OdeMethod method, int steps) {
     const Scene& scene = job.scene;
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const OdePropagator ode(scene, projection, 0.0, 1.0, method, steps);
+    const OdePropagator ode(scene, projection, 0.0, 1.0, {method, steps});
     double worst = 0.0;
     for (std::uint32_t tri : {0u, 7u, 31u}) {
         const MeshPoint point{0, tri, glm::dvec3(0.2, 0.5, 0.3)};

@@ -41,7 +41,7 @@ double observedOrder(OdeMethod method, const std::vector<int>& ladder) {
     const glm::dvec3 exact = ode.exactState(1.0);
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     for (int n : ladder) {
-        const glm::dvec3 y = integrateFixed(ode, method, 0.0, ode.exactState(0.0), 1.0, n);
+        const glm::dvec3 y = integrateFixed(ode, {method, n}, 0.0, ode.exactState(0.0), 1.0);
         const double err = glm::length(glm::dvec2(y.x - exact.x, y.y - exact.y));
         // Stay well above round-off so the slope measures truncation only.
         EXPECT_GT(err, 1e-12) << "ladder reaches round-off at " << n << " steps";
@@ -73,7 +73,7 @@ TEST(VertexOde, Rk4TracksExactPathOnAllTable1Cases) {
                 const VertexOde ode(VertexPath(c.cameraMotion(), c.vertexStart(x, y), c.vertexEnd(x, y)));
                 glm::dvec3 state = ode.exactState(0.0);
                 for (int k = 1; k <= 20; ++k) {
-                    state = integrateFixed(ode, OdeMethod::Rk4, (k - 1) / 20.0, state, k / 20.0, 2);
+                    state = integrateFixed(ode, {OdeMethod::Rk4, 2}, (k - 1) / 20.0, state, k / 20.0);
                     const glm::dvec3 exact = ode.exactState(k / 20.0);
                     // 40 RK4 steps over the frame: error ~1e-9 at the grid corners (see convergence chart).
                     EXPECT_NEAR(state.x, exact.x, 1e-8) << c.name << " " << x << "," << y;
@@ -87,7 +87,7 @@ TEST(VertexOde, BackwardFromEndOfFrame) {
     for (int i = 0; i < 50; ++i) {
         const auto m = randomMotion(rng);
         const VertexOde ode(VertexPath(m.camera, m.start, m.end));
-        const glm::dvec3 y = integrateFixed(ode, OdeMethod::Rk4, 1.0, ode.exactState(1.0), 0.3, 200);
+        const glm::dvec3 y = integrateFixed(ode, {OdeMethod::Rk4, 200}, 1.0, ode.exactState(1.0), 0.3);
         const glm::dvec3 exact = ode.exactState(0.3);
         // 200 RK4 steps of 0.0035: truncation far below 1e-9 for these motions.
         EXPECT_NEAR(y.x, exact.x, 1e-9);
@@ -118,13 +118,13 @@ TEST(VertexOde, CrossingTheCameraPlaneIsARenderError) {
     const CameraFrame c = makeCameraFrame({0, 0, 0}, {0, 0, 1}, {0, 1, 0});
     const VertexOde ode(VertexPath(CameraMotion(c, c), {1, 1, 1}, {1, 1, -1}));
     try {
-        integrateFixed(ode, OdeMethod::Rk4, 0.0, ode.exactState(0.0), 1.0, 64);
+        integrateFixed(ode, {OdeMethod::Rk4, 64}, 0.0, ode.exactState(0.0), 1.0);
         FAIL() << "expected an error";
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ExitCode::Render);
     }
     EXPECT_THROW(integrateAdaptive(ode, 0.0, ode.exactState(0.0), 1.0, 1e-9), Error);
-    EXPECT_THROW(integrateFixed(ode, OdeMethod::Euler, 0.0, ode.exactState(0.0), 0.25, 0), Error);
+    EXPECT_THROW(integrateFixed(ode, {OdeMethod::Euler, 0}, 0.0, ode.exactState(0.0), 0.25), Error);
     EXPECT_THROW(integrateAdaptive(ode, 0.0, ode.exactState(0.0), 0.25, 0.0), Error);
 }
 

@@ -51,7 +51,7 @@ Object diagonalStrip(double depth) {
 bool raysPayOffIn(const RenderJob& job, int tile_index, int rays_per_side) {
     const Projection projection(32, 32, job.scene.camera.vfov_degrees);
     const TileGrid grid(32, 32, job.render.tile_size);
-    const FrameGeometry frame(job.scene, projection, 0.0, grid);
+    const FrameGeometry frame(FrameMotion(job.scene, 0.0, 0.0), projection, 0.0, grid);
     return raysPayOff(frame, frame.tileTriangles(tile_index), grid.tile(tile_index), rays_per_side);
 }
 
@@ -83,15 +83,14 @@ TEST(Candidates, RaysAreTracedOnlyOverTilesWhereTheyPay) {
     const RenderJob job = wallWithStack(12);
     const Projection projection(32, 32, job.scene.camera.vfov_degrees);
     const TileGrid grid(32, 32, job.render.tile_size);
-    const FrameGeometry frame(job.scene, projection, 0.0, grid);
+    const FrameGeometry frame(FrameMotion(job.scene, 0.0, 0.0), projection, 0.0, grid);
     const EmbreeDevice device;
-    const EmbreeScene embree(device, job.scene, 0.0, 0.0);
+    const EmbreeScene embree(device, FrameMotion(job.scene, 0.0, 0.0));
     const MeshAdjacency adjacency(job.scene);
     CandidateScratch scratch;
     CandidateStats stats;
-    std::vector<std::uint32_t> out;
     for (int tile = 0; tile < grid.count(); ++tile) {
-        findCandidates(frame, embree, adjacency, projection, grid.tile(tile), tile, 2, scratch, out, stats);
+        const std::vector<std::uint32_t> out = findCandidates(frame, {embree, adjacency, 2}, tile, scratch, stats);
         if (tile % 4 >= 2) {
             EXPECT_EQ(out.size(), frame.tileTriangles(tile).size()) << tile;
         }
@@ -131,7 +130,7 @@ TEST(Candidates, TrianglesWithAWideInnerDiskHoldARaySample) {
         soup.mesh.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
     }
     job.scene.objects.push_back(soup);
-    const FrameGeometry frame(job.scene, Projection(32, 32, 90.0), 0.0, TileGrid(32, 32, 8));
+    const FrameGeometry frame(FrameMotion(job.scene, 0.0, 0.0), Projection(32, 32, 90.0), 0.0, TileGrid(32, 32, 8));
     int wide = 0;
     for (std::uint32_t s = 0; s < frame.triangles().size(); ++s) {
         const std::array<glm::dvec2, 3>& r = frame.triangles()[s].raster;

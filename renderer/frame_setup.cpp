@@ -1,0 +1,16 @@
+#include "renderer/frame_setup.h"
+
+namespace clipblur {
+
+FrameBuild::FrameBuild(const FrameMotion& motion, const FrameBuildOptions& options, const RenderCallbacks& callbacks)
+    : embree_(device_, motion, options.leave_out), shader_(motion, options.shadows ? &embree_ : nullptr),
+      adjacency_(motion.scene()),
+      setup_{motion,
+             embree_,
+             adjacency_,
+             shader_,
+             Projection(motion.scene().film.width, motion.scene().film.height, motion.scene().camera.vfov_degrees),
+             TileGrid(motion.scene().film.width, motion.scene().film.height, options.tile_size),
+             callbacks} {}
+
+}  // namespace clipblur
