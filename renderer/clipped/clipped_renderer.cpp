@@ -590,7 +590,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const Backdrop backdrop = findBackdrop(job, t0, t1);
     EmbreeDevice device;
     const EmbreeScene embree(device, scene, t0, t1, backdrop.behind_everything ? &backdrop.objects : nullptr);
-    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
+    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr, settings.fragment_shading);
     const MeshAdjacency adjacency(scene);
     const ClippedContext ctx{job,
                              embree,
@@ -653,7 +653,7 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
 
     EmbreeDevice device;
     const EmbreeScene embree(device, scene, t0, t1);
-    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
+    const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr, settings.fragment_shading);
     const MeshAdjacency adjacency(scene);
 
     const bool track_objects = job.output.cryptomatte.enabled;

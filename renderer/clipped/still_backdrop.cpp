@@ -76,7 +76,7 @@ PixelSums renderBackdrop(const RenderJob& job, const Backdrop& backdrop, double 
     }
     const EmbreeDevice device;
     const EmbreeScene embree(device, still, time, time);
-    const Shader shader(still, time, time);
+    const Shader shader(still, time, time, nullptr, job.render.fragment_shading);
     const MeshAdjacency adjacency(still);
     PixelSums sums;
     sums.resize(static_cast<std::size_t>(still.film.width) * still.film.height, job.output.cryptomatte.enabled);
