@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "renderer/render.h"
+#include "renderer/shading/shading.h"
 #include "renderer/test_scenes.h"
 #include "scene/primitives.h"
 
@@ -98,6 +99,32 @@ TEST(SmoothShading, SphereMatchesAnalyticLambertAwayFromEdges) {
     // The stochastic method shades its hits the same way; 64 jittered samples of n.l, which varies by at
     // most 0.05 across a pixel here, leave a standard error under 0.005; 0.03 is 6 of those plus 0.01.
     EXPECT_LT(againstAnalytic(renderFrame(stochastic, 0)).worst, 0.03);
+}
+
+// Deformation keys carry no normals: the blended corner normal turns with its triangle. A triangle whose
+// key turns it by R about an axis in its own plane has R as the smallest rotation taking its face normal
+// to the new one, so the shading normal must be R times the rest blend, to rounding (1e-12).
+TEST(SmoothShading, NormalsFollowADeformingTriangle) {
+    Scene scene;
+    Object tri;
+    tri.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};  // face normal +z
+    tri.mesh.triangles = {{0, 1, 2}};
+    tri.mesh.corner_normals = {{0.3, 0, 1}, {0, -0.2, 1}, {0.1, 0.1, 1}};
+    const glm::dquat r = glm::angleAxis(0.9, glm::normalize(glm::dvec3(1, 1, 0)));
+    std::vector<glm::dvec3> turned;
+    for (const glm::dvec3& p : tri.mesh.positions) turned.push_back(r * p + glm::dvec3(0.5, -2, 3));
+    tri.deformation = {DeformationKey{0.0, tri.mesh.positions}, DeformationKey{1.0, turned}};
+    scene.objects.push_back(tri);
+    scene.materials.push_back(Material{});
+    const Shader shader(scene, 0.0, 1.0);
+    const double u = 0.2, v = 0.5;
+    const glm::dvec3 blend = (1 - u - v) * tri.mesh.corner_normals[0] + u * tri.mesh.corner_normals[1] +
+                             v * tri.mesh.corner_normals[2];
+    const SurfaceGeometry rest = shader.geometry(SurfacePoint{0, 0, u, v, 0.0});
+    EXPECT_LT(glm::length(rest.shading_normal - glm::normalize(blend)), 1e-12);
+    const SurfaceGeometry end = shader.geometry(SurfacePoint{0, 0, u, v, 1.0});
+    EXPECT_LT(glm::length(end.shading_normal - glm::normalize(r * blend)), 1e-12);
+    EXPECT_LT(glm::length(end.normal - r * glm::dvec3(0, 0, 1)), 1e-12);
 }
 
 }  // namespace clipblur
