@@ -8,6 +8,8 @@
 #include "io/config/document_reader.h"
 #include "io/config/job_schema.h"
 #include "io/config/overrides.h"
+#include "renderer/shading/image_textures.h"
+#include "renderer/shading/shading.h"
 #include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/primitives.h"
@@ -19,16 +21,25 @@ namespace {
 
 using config::MeshSource;
 
-// `faces` receives an OBJ mesh's faces as written (left empty for primitives).
-Mesh buildMesh(const MeshSource& src, const std::filesystem::path& base, std::uint64_t budget, ObjFaces& faces) {
+// The object's mesh; an OBJ file's faces as written and material come along (none for primitives).
+ObjFile buildMesh(const MeshSource& src, const std::filesystem::path& base, std::uint64_t budget) {
+    ObjFile out;
     switch (src.kind) {
-        case MeshSource::Kind::Quad: return makeQuad({src.size.x, src.size.y});
-        case MeshSource::Kind::Grid: return makeGrid({src.size.x, src.size.y}, src.nx, src.nz);
-        case MeshSource::Kind::Box: return makeBox(src.size);
-        case MeshSource::Kind::Sphere: return makeSphere(0.5 * src.size.x, src.segments);
-        case MeshSource::Kind::Obj: return loadObjMesh(base / src.obj_path, src.loc, budget, &faces);
+        case MeshSource::Kind::Quad: out.mesh = makeQuad({src.size.x, src.size.y}); break;
+        case MeshSource::Kind::Grid: out.mesh = makeGrid({src.size.x, src.size.y}, src.nx, src.nz); break;
+        case MeshSource::Kind::Box: out.mesh = makeBox(src.size); break;
+        case MeshSource::Kind::Sphere: out.mesh = makeSphere(0.5 * src.size.x, src.segments); break;
+        case MeshSource::Kind::Obj: out = loadObjFile(base / src.obj_path, src.loc, budget); break;
     }
-    return {};
+    return out;
+}
+
+// Reads every image texture now, so that a missing or unreadable one is a scene error before rendering.
+// Scenes without image textures never start the texture system.
+void prepareImageTextures(const Scene& scene) {
+    if (!usesImageTextures(scene)) return;
+    for (const Material& m : scene.materials)
+        if (!m.image.file.empty()) ImageTextures::shared().prepare(m.image.file, m.image.loc);
 }
 
 // Appends the glTF scene's objects and materials; its camera unless the job has its own.
@@ -83,9 +94,19 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
         const MeshSource& src = desc.meshes[i];
         Object& object = job.scene.objects[i];
         const std::uint64_t budget = std::min(config::kMaxTrianglesPerObject, config::kMaxTotalTriangles - total);
-        ObjFaces faces;
-        object.mesh = buildMesh(src, base, budget, faces);
-        if (read_files && src.kind == MeshSource::Kind::Obj) read_files->push_back(base / src.obj_path);
+        ObjFile built = buildMesh(src, base, budget);
+        object.mesh = std::move(built.mesh);
+        const ObjFaces& faces = built.faces;
+        if (built.material && !src.job_material) {
+            object.material = static_cast<int>(job.scene.materials.size());
+            job.scene.materials.push_back(*built.material);
+        }
+        if (read_files && src.kind == MeshSource::Kind::Obj) {
+            read_files->push_back(base / src.obj_path);
+            read_files->insert(read_files->end(), built.material_files.begin(), built.material_files.end());
+            if (built.material && !built.material->image.file.empty())
+                read_files->push_back(built.material->image.file);
+        }
         total += object.mesh.triangles.size();
         for (const MeshSource::Deformation& d : src.deformation) {
             ObjFaces key_faces;
@@ -115,6 +136,7 @@ RenderJob build(config::ConfigNode document, const std::filesystem::path& file,
         std::ifstream in(scene_path, std::ios::binary);
         job.config_hash = config::fnv1a64Hex(job.config_hash + std::string(std::istreambuf_iterator<char>(in), {}));
     }
+    prepareImageTextures(job.scene);
     std::vector<std::string> warnings = validateScene(job.scene, desc.locations);
     warnings.insert(warnings.end(), job.warnings.begin(), job.warnings.end());
     job.warnings = std::move(warnings);

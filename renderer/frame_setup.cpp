@@ -3,7 +3,8 @@
 namespace clipblur {
 
 FrameBuild::FrameBuild(const FrameMotion& motion, const FrameBuildOptions& options, const RenderCallbacks& callbacks)
-    : embree_(device_, motion, options.leave_out), shader_(motion, options.shadows ? &embree_ : nullptr),
+    : embree_(device_, motion, options.leave_out),
+      shader_(motion, options.shadows ? &embree_ : nullptr, options.fragment_shading),
       adjacency_(motion.scene()),
       setup_{motion,
              embree_,

@@ -53,6 +53,8 @@ public:
     GltfReader(const tinygltf::Model& model, const std::string& name, const GltfRequest& request)
         : model_(model), name_(name), request_(request) {}
 
+    const std::string& name() const { return name_; }
+
     [[noreturn]] void fail(const std::string& where, const std::string& message) const {
         const std::string ref = request_.ref.toString();
         throw Error(ExitCode::Scene, where + ": " + message + (ref.empty() ? "" : " (glTF file of " + ref + ")"),
@@ -195,6 +197,8 @@ struct PrimitiveGeometry {
     std::vector<glm::dvec3> positions;
     std::vector<std::array<std::uint32_t, 3>> triangles;
     std::vector<std::vector<glm::dvec3>> targets;
+    std::vector<glm::dvec3> normals;  // per vertex; empty without NORMAL
+    std::vector<glm::dvec2> uvs;      // per vertex; empty without TEXCOORD_0
 };
 
 std::vector<glm::dvec3> toVec3(const std::vector<double>& v) {
@@ -207,6 +211,7 @@ class SceneBuilder {
 public:
     SceneBuilder(const tinygltf::Model& model, const std::string& name, const GltfRequest& request)
         : model_(model), reader_(model, name, request), request_(request),
+          folder_(std::filesystem::path(name).parent_path()),
           names_(request.taken_names.begin(), request.taken_names.end()) {}
 
     GltfScene build() {
@@ -241,9 +246,9 @@ private:
             Material mat;
             mat.base_color = {f[0], f[1], f[2]};
             mat.two_sided = m.doubleSided;
-            out_.materials.push_back(mat);
             if (m.pbrMetallicRoughness.baseColorTexture.index >= 0)
-                warnings_.insert("glTF baseColorTexture is ignored (textures are not supported yet)");
+                mat.image = baseColorImage(m.pbrMetallicRoughness.baseColorTexture, pointer("materials", i));
+            out_.materials.push_back(mat);
             if (m.extensions.count("KHR_materials_unlit"))
                 warnings_.insert("glTF KHR_materials_unlit is ignored (the shading has no unlit model)");
             const bool emissive = std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(),
@@ -253,7 +258,36 @@ private:
         }
         // The spec's default material: white, single-sided.
         default_material_ = out_.materials.size();
-        out_.materials.push_back(Material{glm::dvec3(1.0), Texture{}, false});
+        Material fallback;
+        fallback.base_color = glm::dvec3(1.0);
+        fallback.two_sided = false;
+        out_.materials.push_back(fallback);
+    }
+
+    // The image file a baseColorTexture names; it multiplies baseColorFactor, read through TEXCOORD_0.
+    ImageTexture baseColorImage(const tinygltf::TextureInfo& info, const std::string& material) {
+        const std::string where = material + "/pbrMetallicRoughness/baseColorTexture";
+        if (info.texCoord != 0) reader_.fail(where, "texCoord " + std::to_string(info.texCoord) + " is not supported (TEXCOORD_0 only)");
+        if (info.extensions.count("KHR_texture_transform"))
+            warnings_.insert("glTF KHR_texture_transform is ignored (" + where + " and any others)");
+        if (static_cast<std::size_t>(info.index) >= model_.textures.size())
+            reader_.fail(where, "texture " + std::to_string(info.index) + " does not exist");
+        const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
+        const std::string texture_where = pointer("textures", static_cast<std::size_t>(info.index));
+        if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size())
+            reader_.fail(texture_where, "source " + std::to_string(texture.source) + " does not exist");
+        const tinygltf::Image& image = model_.images[static_cast<std::size_t>(texture.source)];
+        const std::string image_where = pointer("images", static_cast<std::size_t>(texture.source));
+        if (image.uri.empty() || image.uri.rfind("data:", 0) == 0)
+            reader_.fail(image_where, "only images in files are supported (no bufferView or data URI)");
+        const std::filesystem::path file = folder_ / image.uri;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec))
+            reader_.fail(image_where, "texture file '" + file.string() + "' does not exist");
+        ImageTexture out;
+        out.file = file.string();
+        out.loc = FileLoc{reader_.name(), 0, 0};
+        return out;
     }
 
     void readNodes() {
@@ -439,6 +473,17 @@ private:
         } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
             for (std::size_t i = 1; i + 1 < idx.size(); ++i) g.triangles.push_back({idx[0], idx[i], idx[i + 1]});
         }
+        const auto normal = p.attributes.find("NORMAL");
+        if (normal != p.attributes.end()) {
+            g.normals = toVec3(reader_.floats(normal->second, TINYGLTF_TYPE_VEC3, "NORMAL"));
+            if (g.normals.size() != g.positions.size()) reader_.fail(where + "/attributes", "NORMAL count differs from POSITION's");
+        }
+        const auto uv = p.attributes.find("TEXCOORD_0");
+        if (uv != p.attributes.end()) {
+            const std::vector<double> st = reader_.floats(uv->second, TINYGLTF_TYPE_VEC2, "TEXCOORD_0");
+            for (std::size_t i = 0; i + 1 < st.size(); i += 2) g.uvs.push_back({st[i], st[i + 1]});
+            if (g.uvs.size() != g.positions.size()) reader_.fail(where + "/attributes", "TEXCOORD_0 count differs from POSITION's");
+        }
         for (std::size_t t = 0; t < p.targets.size(); ++t) {
             const auto d = p.targets[t].find("POSITION");
             std::vector<glm::dvec3> delta(g.positions.size(), glm::dvec3(0.0));
@@ -503,6 +548,7 @@ private:
     const tinygltf::Model& model_;
     GltfReader reader_;
     const GltfRequest& request_;
+    std::filesystem::path folder_;  // image URIs are relative to the glTF file
     GltfScene out_;
     std::size_t default_material_ = 0;
     std::vector<AnimatedNode> nodes_;
@@ -576,6 +622,11 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     object.loc = request_.ref;
     object.material = materialOf(mesh.primitives[prim], n.mesh, prim);
     object.mesh.triangles = g.triangles;
+    for (const auto& t : g.triangles)
+        for (const std::uint32_t v : t) {
+            if (!g.uvs.empty()) object.mesh.corner_uvs.push_back(g.uvs[v]);
+            if (!g.normals.empty()) object.mesh.corner_normals.push_back(g.normals[v]);
+        }
     if (n.skin >= 0) {
         // A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints.
         object.mesh.positions = g.positions;
@@ -588,6 +639,9 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     for (glm::dvec3& p : g.positions) p = glm::dvec3(s.tail * glm::dvec4(p, 1.0));
     for (auto& target : g.targets)
         for (glm::dvec3& d : target) d = glm::dvec3(s.tail * glm::dvec4(d, 0.0));
+    // Normals go by the inverse transpose of the tail's linear part, so they stay normal to the surface.
+    const glm::dmat3 normal_map = glm::transpose(glm::inverse(glm::dmat3(s.tail)));
+    for (glm::dvec3& normal : object.mesh.corner_normals) normal = normal_map * normal;
     object.mesh.positions = g.positions;
     const std::vector<double> rest = restWeights(node, g.targets.size());
     for (std::size_t t = 0; t < g.targets.size(); ++t)

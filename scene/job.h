@@ -13,6 +13,10 @@ namespace clipblur {
 enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
 enum class PathMethod { Exact, Euler, RK4 };
 enum class TimeIntegration { Subframes, Sweep };
+// How a clipped fragment piece gets its one colour: shaded at its area centroid with an image texture
+// filtered over the whole piece, or cut into a fan of triangles about the centroid, each shaded that
+// way, their colours averaged by area (as many shading points as the piece has vertices).
+enum class FragmentShading { Centroid, Fan };
 
 // The name a job file uses for the method.
 const char* methodName(Method method);
@@ -42,6 +46,7 @@ struct RenderSettings {
     // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel.
     TimeIntegration time_integration = TimeIntegration::Subframes;
     double sweep_spacing = 1.0;
+    FragmentShading fragment_shading = FragmentShading::Centroid;
     int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)
     bool shadows = false;
     std::uint64_t seed = 0;

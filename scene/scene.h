@@ -44,9 +44,17 @@ struct TransformKey {
     glm::dvec3 scale{1.0};
 };
 
+// Shading attributes are per triangle corner (corner k of triangle t at 3t + k), as OBJ and glTF index them
+// apart from positions; empty means absent: faceted shading, no UVs. Normals are object space, need not be
+// unit, and belong to the rest positions.
 struct Mesh {
     std::vector<glm::dvec3> positions;
     std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<glm::dvec3> corner_normals;  // empty or 3 per triangle
+    std::vector<glm::dvec2> corner_uvs;      // empty or 3 per triangle
+
+    bool smooth() const { return !corner_normals.empty(); }
+    bool hasUvs() const { return !corner_uvs.empty(); }
 };
 
 // Deformation blur: the same topology at another time (object space).
@@ -62,9 +70,17 @@ struct Texture {
     double scale = 1.0;  // period length in object-space units
 };
 
+// An image read through the mesh's UVs (u right, v up, repeating), multiplying the base colour.
+// Integer texels are sRGB-encoded (PNG, JPEG), float texels linear.
+struct ImageTexture {
+    std::string file;  // resolved path; empty: none
+    FileLoc loc;       // where the scene names it
+};
+
 struct Material {
     glm::dvec3 base_color{0.8};
     Texture texture;
+    ImageTexture image;
     bool two_sided = true;
 };
 

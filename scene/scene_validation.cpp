@@ -67,6 +67,16 @@ void checkObject(const Object& o, std::size_t index, const Scene& scene, const S
                                            std::to_string(n) + " vertices");
     if (o.material < 0 || static_cast<std::size_t>(o.material) >= scene.materials.size())
         throwSceneError(o.loc, name + " refers to material " + std::to_string(o.material) + " which does not exist");
+    const std::size_t corners = 3 * o.mesh.triangles.size();
+    if ((o.mesh.smooth() && o.mesh.corner_normals.size() != corners) ||
+        (o.mesh.hasUvs() && o.mesh.corner_uvs.size() != corners))
+        throwSceneError(o.loc, name + " has corner normals or UVs for other than its " + std::to_string(corners) +
+                                   " triangle corners");
+    for (const glm::dvec3& normal : o.mesh.corner_normals)
+        if (!std::isfinite(normal.x) || !std::isfinite(normal.y) || !std::isfinite(normal.z))
+            throwSceneError(o.loc, name + " has a normal that is not finite");
+    for (const glm::dvec2& uv : o.mesh.corner_uvs)
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) throwSceneError(o.loc, name + " has a UV that is not finite");
 
     const auto& tlocs = itemAt(locations.transform_keys, index);
     requireIncreasing(o.transform, tlocs, o.loc, name + " transform");

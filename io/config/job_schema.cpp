@@ -242,6 +242,7 @@ void readObject(MapReader o, std::size_t index, const std::map<std::string, int>
         src.obj_path = asString(*obj, o.keyPath("obj"));
         src.loc = obj->loc;
     }
+    src.job_material = o.has("material");
     if (src.triangles > kMaxTrianglesPerObject)
         throwConfigError(src.loc, "'" + o.path() + "' would have " + std::to_string(src.triangles) +
                                       " triangles, more than the limit of " + std::to_string(kMaxTrianglesPerObject));
@@ -306,6 +307,9 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
         r.time_integration =
             static_cast<TimeIntegration>(asChoice(*t, "render.time_integration", {"subframes", "sweep"}));
     r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
+    if (const ConfigNode* f = map.optional("fragment_shading"))
+        r.fragment_shading =
+            static_cast<FragmentShading>(asChoice(*f, "render.fragment_shading", {"centroid", "fan"}));
     r.visibility_rays = map.integer("visibility_rays", r.visibility_rays, 0, kMaxVisibilityRays);
     r.shadows = map.boolean("shadows", r.shadows);
     if (const ConfigNode* s = map.optional("seed")) r.seed = asUnsigned(*s, "render.seed");

@@ -36,6 +36,7 @@ struct MeshSource {
     std::string obj_path;  // as written, relative to the job file's folder
     FileLoc loc;           // of the primitive map or the obj value
     std::uint64_t triangles = 0;  // known up front for primitives, else 0
+    bool job_material = false;    // the object names its `material`, which wins over an OBJ's usemtl
 
     struct Deformation {
         double time = 0.0;

@@ -621,6 +621,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const FrameBuild build(motion,
                            {.tile_size = settings.tile_size,
                             .shadows = settings.shadows,
+                            .fragment_shading = settings.fragment_shading,
                             .leave_out = backdrop.behind_everything ? &backdrop.objects : nullptr},
                            callbacks);
     const FrameSetup& setup = build.setup();
@@ -672,7 +673,10 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     const std::size_t pixels = scene.film.pixels().area();
     const int n = std::max(1, settings.samples);
 
-    const FrameBuild build(motion, {.tile_size = settings.tile_size, .shadows = settings.shadows}, callbacks);
+    const FrameBuild build(
+        motion,
+        {.tile_size = settings.tile_size, .shadows = settings.shadows, .fragment_shading = settings.fragment_shading},
+        callbacks);
     const FrameSetup& setup = build.setup();
 
     const bool track_objects = job.output.cryptomatte.enabled;

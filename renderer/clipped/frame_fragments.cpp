@@ -164,7 +164,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
                     if (!merged[localIndex(screen_index)]) emitPolygon(polygon, screen, source, out.triangles);
                     if (!still || x < 0 || y < 0 || x >= width || y >= height) continue;  // guard band
                     pieces.clear();
-                    shadeFragment(polygon, screen, source, setup.shader, time, eye, pieces);
+                    shadeFragment(polygon, {screen, source}, setup.shader, {time, eye}, pieces);
                     out.stats.shaded_pieces += static_cast<long long>(pieces.size());
                     for (const ShadedPiece& piece : pieces) {
                         still->colour[pixel] += piece.area * piece.colour;

@@ -77,7 +77,8 @@ PixelSums renderBackdrop(const RenderJob& job, const FrameSetup& frame, const Ba
         original.push_back(static_cast<int>(o));
     }
     const FrameMotion motion(still, time, time);
-    const FrameBuild build(motion, {.tile_size = frame.grid.tileSize()}, frame.callbacks);
+    const FrameBuild build(
+        motion, {.tile_size = frame.grid.tileSize(), .fragment_shading = job.render.fragment_shading}, frame.callbacks);
     const FrameSetup& setup = build.setup();
     PixelSums sums;
     sums.resize(static_cast<std::size_t>(still.film.width) * still.film.height, job.output.cryptomatte.enabled);

@@ -334,8 +334,8 @@ ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
         const double m = shade_once ? 1.0 : fragment.mix(k);
         // The piece is where this source's surface is now; it is shaded as its frame saw it.
         scratch.pieces.clear();
-        shadeFragment(polygon, scratch.screen[s], scratch.sources[s], pass.tile.shader, layers.time[ref.layer],
-                      layers.eye[ref.layer], scratch.pieces);
+        shadeFragment(polygon, {scratch.screen[s], scratch.sources[s]}, pass.tile.shader,
+                      {layers.time[ref.layer], layers.eye[ref.layer]}, scratch.pieces);
         pass.stats.shaded_pieces += static_cast<long long>(scratch.pieces.size());
         glm::dvec3 sum(0.0);
         double area = 0.0;

@@ -89,10 +89,92 @@ std::array<glm::dvec3, 3> objectPositions(const Scene& scene, const SourceTriang
     return out;
 }
 
+
+// Image-texture (s, t) over z as affine functions of d = raster - r0, so that (s, t) and its raster
+// derivatives are known in closed form anywhere on the screen triangle (perspective-correct).
+struct UvFunctions {
+    std::array<Affine, 2> uv_over_z{};
+    bool valid = false;
+
+    UvFunctions(const ScreenTriangle& t, const SourceTriangle& source, const Scene& scene, const TriangleFunctions& f) {
+        const Mesh& mesh = scene.objects[source.object].mesh;
+        if (!mesh.hasUvs() || !f.valid) return;
+        const std::size_t corner = 3 * static_cast<std::size_t>(source.triangle);
+        for (int axis = 0; axis < 2; ++axis) {
+            std::array<double, 3> k{};
+            for (int i = 0; i < 3; ++i) {
+                const glm::dvec3& b = source.bary[i];
+                k[i] = t.inv_depth[i] * (b.x * mesh.corner_uvs[corner][axis] + b.y * mesh.corner_uvs[corner + 1][axis] +
+                                         b.z * mesh.corner_uvs[corner + 2][axis]);
+            }
+            for (int i = 0; i < 3; ++i) {
+                uv_over_z[axis].a += k[i] * f.l[i].a;
+                uv_over_z[axis].b += k[i] * f.l[i].b;
+                uv_over_z[axis].c += k[i] * f.l[i].c;
+            }
+        }
+        valid = true;
+    }
+
+    // The footprint of a raster box of size `extent` at d: (s, t)'s raster Jacobian times the box's sides.
+    TextureFootprint footprint(const glm::dvec2& d, const glm::dvec2& extent, const Affine& inv_depth) const {
+        const double w = inv_depth(d);
+        TextureFootprint out;
+        for (int axis = 0; axis < 2; ++axis) {
+            const double value = uv_over_z[axis](d) / w;
+            out.dx[axis] = (uv_over_z[axis].a - value * inv_depth.a) / w * extent.x;
+            out.dy[axis] = (uv_over_z[axis].b - value * inv_depth.b) / w * extent.y;
+        }
+        return out;
+    }
+};
+
+struct ShadingCall {
+    const ScreenTriangle& screen;
+    const SourceTriangle& source;
+    const Shader& shader;
+    double time;
+    const glm::dvec3& eye;
+    const TriangleFunctions& f;
+    const UvFunctions& uv;
+};
+
+// One colour for a piece: the surface at its area centroid, the texture filtered over its bounding box.
+glm::dvec3 shadeAt(const ConvexPolygon& piece, const ShadingCall& c) {
+    const glm::dvec2 at = centroid(piece);
+    const glm::dvec3 b = c.f.bary(at, c.screen);
+    const glm::dvec3 m = b.x * c.source.bary[0] + b.y * c.source.bary[1] + b.z * c.source.bary[2];
+    const SurfacePoint point{static_cast<int>(c.source.object), c.source.triangle, m.y, m.z, c.time};
+    if (!c.uv.valid) return c.shader.shade(point, c.eye);
+    SurfaceGeometry surface = c.shader.geometry(point);
+    const RasterBounds box = piece.bounds();
+    surface.footprint = c.uv.footprint(at - c.f.origin, box.hi - box.lo, c.f.inv_depth);
+    return c.shader.shade(point, surface, c.eye);
+}
+
+// The piece cut into triangles about its centroid, each shaded by shadeAt, averaged by area.
+glm::dvec3 shadeFan(const ConvexPolygon& piece, const ShadingCall& c) {
+    const glm::dvec2 middle = centroid(piece);
+    glm::dvec3 sum(0.0);
+    double total = 0.0;
+    for (int i = 0; i < piece.n; ++i) {
+        const ConvexPolygon part = ConvexPolygon::triangle(middle, piece.v[i], piece.v[(i + 1) % piece.n]);
+        const double area = part.area();
+        if (!(area > 0.0)) continue;
+        sum += area * shadeAt(part, c);
+        total += area;
+    }
+    return total > 0.0 ? sum / total : shadeAt(piece, c);
+}
+
 }  // namespace
 
-void shadeFragment(const ConvexPolygon& polygon, const ScreenTriangle& screen, const SourceTriangle& source,
-                   const Shader& shader, double time, const glm::dvec3& eye, std::vector<ShadedPiece>& out) {
+void shadeFragment(const ConvexPolygon& polygon, const FragmentSurface& on, const Shader& shader,
+                   const ShadingFrame& frame, std::vector<ShadedPiece>& out) {
+    const ScreenTriangle& screen = on.screen;
+    const SourceTriangle& source = on.source;
+    const double time = frame.time;
+    const glm::dvec3& eye = frame.eye;
     const Scene& scene = shader.scene();
     const Material& material =
         scene.materials[static_cast<std::size_t>(scene.objects[source.object].material)];
@@ -141,16 +223,18 @@ void shadeFragment(const ConvexPolygon& polygon, const ScreenTriangle& screen, c
         }
         cells.swap(next);
     }
+    const UvFunctions uv(screen, source, scene, f);
+    // Faceted, untextured pieces keep one centroid: their colour is exact there for directional light.
+    const bool fan = shader.fragmentShading() == FragmentShading::Fan &&
+                     (uv.valid || scene.objects[source.object].mesh.smooth());
     for (const ConvexPolygon& cell : cells) {
         const double area = cell.area();
         if (!(area > 0.0)) continue;
         ShadedPiece piece;
         piece.polygon = cell;
         piece.area = area;
-        const glm::dvec3 b = f.bary(centroid(cell), screen);
-        const glm::dvec3 m = b.x * source.bary[0] + b.y * source.bary[1] + b.z * source.bary[2];
-        const SurfacePoint point{static_cast<int>(source.object), source.triangle, m.y, m.z, time};
-        piece.colour = shader.shade(point, eye);
+        const ShadingCall call{screen, source, shader, time, eye, f, uv};
+        piece.colour = fan ? shadeFan(cell, call) : shadeAt(cell, call);
         out.push_back(piece);
     }
 }

@@ -24,11 +24,23 @@ inline constexpr int kMaxTextureCuts = 8;
 
 // Cuts a visible fragment polygon of `screen` along its material's checker or stripe cell boundaries
 // (planes in object space, hence lines in raster space: (X - k s)/z is affine in raster), so that every
-// piece has one albedo, then shades each piece at its area centroid. Lambert lighting varies smoothly
-// over a fragment, so the centroid value is second-order accurate in the fragment size; a directional
-// light on a flat triangle is exact.
-void shadeFragment(const ConvexPolygon& polygon, const ScreenTriangle& screen, const SourceTriangle& source,
-                   const Shader& shader, double time, const glm::dvec3& eye, std::vector<ShadedPiece>& out);
+// piece has one albedo, then gives each piece the colour the shader's FragmentShading rule says: by
+// default the surface at its area centroid, an image texture filtered over the piece's footprint (its
+// bounding box carried into (s, t) by the perspective-correct Jacobian at the centroid). Lambert lighting
+// varies smoothly over a fragment, so the centroid value is second-order accurate in the fragment size; a
+// directional light on a flat, faceted triangle is exact.
+// The triangle a fragment lies on: in raster space and on its mesh.
+struct FragmentSurface {
+    const ScreenTriangle& screen;
+    const SourceTriangle& source;
+};
+// The frame a fragment is shaded as: its time and the camera position then.
+struct ShadingFrame {
+    double time = 0.0;
+    glm::dvec3 eye{0.0};
+};
+void shadeFragment(const ConvexPolygon& polygon, const FragmentSurface& on, const Shader& shader,
+                   const ShadingFrame& frame, std::vector<ShadedPiece>& out);
 
 // The area centroid of a convex polygon.
 glm::dvec2 centroid(const ConvexPolygon& polygon);

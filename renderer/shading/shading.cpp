@@ -32,6 +32,12 @@ glm::dvec3 albedo(const Material& material, const glm::dvec3& p) {
     return material.base_color;
 }
 
+bool usesImageTextures(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (!m.image.file.empty()) return true;
+    return false;
+}
+
 glm::dvec3 lightIrradiance(const Light& light, const glm::dvec3& position, const glm::dvec3& normal,
                            glm::dvec3* to_light) {
     if (light.kind == Light::Kind::Directional) {
@@ -49,8 +55,18 @@ glm::dvec3 lightIrradiance(const Light& light, const glm::dvec3& position, const
     return light.intensity * light.color * cosine / dist2;
 }
 
-Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows)
-    : scene_(motion.scene()), motion_(motion), shadows_(shadows), static_world_(scene_.objects.size()) {
+Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows, FragmentShading fragments)
+    : scene_(motion.scene()), motion_(motion), shadows_(shadows), fragments_(fragments),
+      static_world_(scene_.objects.size()), images_(scene_.materials.size(), nullptr) {
+    if (usesImageTextures(scene_)) {
+        ImageTextures& textures = ImageTextures::shared();
+        for (std::size_t m = 0; m < scene_.materials.size(); ++m) {
+            const std::string& file = scene_.materials[m].image.file;
+            if (file.empty()) continue;
+            textures.prepare(file, FileLoc{});
+            images_[m] = textures.find(file);
+        }
+    }
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
         const Object& object = scene_.objects[o];
         if (!motion.shutter().objectStill(o)) continue;
@@ -90,7 +106,47 @@ SurfaceGeometry Shader::geometry(const SurfacePoint& sp) const {
     const double len = glm::length(n);
     g.normal = len > 0.0 ? n / len : glm::dvec3(0.0);
     g.object_position = objectPosition(sp);
+    addCornerAttributes(sp, g);
     return g;
+}
+
+namespace {
+
+// The smallest rotation taking unit vector a to unit vector b, applied to v (Rodrigues' formula with
+// sin and cos from a x b and a . b); a and b are not opposite.
+glm::dvec3 turnLike(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& v) {
+    const glm::dvec3 axis = glm::cross(a, b);
+    const double c = glm::dot(a, b);
+    return v * c + glm::cross(axis, v) + axis * (glm::dot(axis, v) / (1.0 + c));
+}
+
+}  // namespace
+
+void Shader::addCornerAttributes(const SurfacePoint& sp, SurfaceGeometry& g) const {
+    const Mesh& mesh = scene_.objects[static_cast<std::size_t>(sp.object)].mesh;
+    const std::size_t corner = 3 * static_cast<std::size_t>(sp.triangle);
+    const double w = 1.0 - sp.u - sp.v;
+    if (mesh.hasUvs())
+        g.uv = w * mesh.corner_uvs[corner] + sp.u * mesh.corner_uvs[corner + 1] + sp.v * mesh.corner_uvs[corner + 2];
+    if (!mesh.smooth() || g.normal == glm::dvec3(0.0)) return;
+    const Object& object = scene_.objects[static_cast<std::size_t>(sp.object)];
+    const RigidTransform x = evalTransform(object.transform, sp.time);
+    const auto toWorld = [&](const glm::dvec3& n) { return x.rotate * (n / x.scale); };
+    const glm::dvec3 n = toWorld(w * mesh.corner_normals[corner] + sp.u * mesh.corner_normals[corner + 1] +
+                                 sp.v * mesh.corner_normals[corner + 2]);
+    const auto& tri = mesh.triangles[sp.triangle];
+    const auto& rest = mesh.positions;
+    const glm::dvec3 face = toWorld(glm::cross(rest[tri[1]] - rest[tri[0]], rest[tri[2]] - rest[tri[0]]));
+    const double face_length = glm::length(face), n_length = glm::length(n);
+    if (!(face_length > 0.0) || !(n_length > 0.0)) return;
+    // The caller's face normal may be the mesh's front or its reverse (Embree's convention); the shading
+    // normal goes to the same side, so the back-face test flips both together.
+    const glm::dvec3 front = glm::dot(face, g.normal) < 0.0 ? -g.normal : g.normal;
+    const double side = glm::dot(face, g.normal) < 0.0 ? -1.0 : 1.0;
+    glm::dvec3 s = n / n_length;
+    if (!object.deformation.empty() && glm::dot(face / face_length, front) > -0.999999)
+        s = turnLike(face / face_length, front, s);
+    g.shading_normal = side * glm::normalize(s);
 }
 
 glm::dvec3 Shader::objectPosition(const SurfacePoint& sp) const {
@@ -109,14 +165,16 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surfa
     const Object& object = scene_.objects[static_cast<std::size_t>(point.object)];
     const Material& material = scene_.materials[static_cast<std::size_t>(object.material)];
     glm::dvec3 n = surface.normal;
+    glm::dvec3 lit = surface.shading_normal == glm::dvec3(0.0) ? n : surface.shading_normal;
     if (glm::dot(n, eye - surface.position) < 0.0) {
         if (!material.two_sided) return glm::dvec3(0.0);
         n = -n;
+        lit = -lit;
     }
     glm::dvec3 light_sum = scene_.ambient;
     for (const Light& light : scene_.lights) {
         glm::dvec3 to_light;
-        const glm::dvec3 e = lightIrradiance(light, surface.position, n, &to_light);
+        const glm::dvec3 e = lightIrradiance(light, surface.position, lit, &to_light);
         if (e == glm::dvec3(0.0)) continue;
         if (shadows_) {
             // Shadow rays start slightly off the surface: Embree intersects in float, so the hit point is
@@ -133,6 +191,10 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surfa
         }
         light_sum += e;
     }
+    const ImageTextures::Image* image = images_[static_cast<std::size_t>(object.material)];
+    if (image)
+        return albedo(material, surface.object_position) *
+               ImageTextures::shared().lookup(*image, surface.uv, surface.footprint) * light_sum;
     return albedo(material, surface.object_position) * light_sum;
 }
 

@@ -6,6 +6,8 @@
 #include <glm/glm.hpp>
 
 #include "renderer/frame_motion.h"
+#include "renderer/shading/image_textures.h"
+#include "scene/job.h"
 #include "scene/scene.h"
 
 namespace clipblur {
@@ -26,7 +28,13 @@ struct SurfaceGeometry {
     glm::dvec3 position{0.0};         // world, at the point's time
     glm::dvec3 normal{0.0};           // unit, (v1-v0) x (v2-v0) at that time; zero for degenerate triangles
     glm::dvec3 object_position{0.0};  // on the rest mesh (Mesh::positions): textures stick to the surface
+    // Smooth meshes: the interpolated corner normal at that time, unit, on the side `normal` is; zero
+    // for faceted meshes, which light with `normal`.
+    glm::dvec3 shading_normal{0.0};
+    glm::dvec2 uv{0.0};               // meshes with UVs: image-texture (s, t)
+    TextureFootprint footprint;       // the (s, t) extent the colour stands for; zero: a point
 };
+
 
 // Lambert shading: albedo * (ambient + sum over lights of intensity * color * max(0, n.l)), point lights
 // divided by the squared distance. Albedo is the material's base colour or its checker/stripe texture
@@ -40,11 +48,18 @@ class Shader {
 public:
     // Precomputes world positions of objects that do not move during the frame's shutter. With `shadows`
     // set, each light is tested for occlusion with a shadow ray at the point's time.
-    explicit Shader(const FrameMotion& motion, const EmbreeScene* shadows = nullptr);
+    explicit Shader(const FrameMotion& motion, const EmbreeScene* shadows = nullptr,
+                    FragmentShading fragments = FragmentShading::Centroid);
 
     SurfaceGeometry geometry(const SurfacePoint& point) const;
     // The point on the rest mesh (what textures read): no motion to evaluate.
     glm::dvec3 objectPosition(const SurfacePoint& point) const;
+    // Fills `surface`'s shading normal and UV from the mesh's corner attributes, given its position and
+    // face normal at the point's time. Rigid motion carries the normal by the inverse transpose (rotation
+    // over scale); deformation then turns it by the smallest rotation that takes the triangle's rest face
+    // normal to its face normal at that time, so it follows the triangle it is on.
+    void addCornerAttributes(const SurfacePoint& point, SurfaceGeometry& surface) const;
+    FragmentShading fragmentShading() const { return fragments_; }
     // `eye` is the camera position at point.time; `shadow_rays` (optional) is incremented per ray cast.
     glm::dvec3 shade(const SurfacePoint& point, const glm::dvec3& eye, long long* shadow_rays = nullptr) const;
     glm::dvec3 shade(const SurfacePoint& point, const SurfaceGeometry& surface, const glm::dvec3& eye,
@@ -61,11 +76,16 @@ private:
     const Scene& scene_;
     const FrameMotion& motion_;
     const EmbreeScene* shadows_;
+    FragmentShading fragments_;
     std::vector<std::vector<glm::dvec3>> static_world_;  // per object; empty when the object moves
+    std::vector<const ImageTextures::Image*> images_;    // per material; null without an image texture
 };
 
-// Base colour or texture at an object-space point (no lighting).
+// Base colour or texture at an object-space point (no lighting); image textures are not included.
 glm::dvec3 albedo(const Material& material, const glm::dvec3& object_position);
+
+// True when some material of the scene reads an image.
+bool usesImageTextures(const Scene& scene);
 
 // Light arriving at `position` with unit normal `normal` from one light (no shadowing): intensity *
 // color * max(0, n.l), over distance^2 for point lights. `to_light` receives the unnormalised

@@ -133,9 +133,13 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                         const SurfacePoint point{hit.object, hit.triangle, hit.u, hit.v, t};
                         // The surface as Embree hit it: no motion evaluated again per sample.
                         const double normal_length = glm::length(hit.normal);
-                        const SurfaceGeometry surface{camera.position + hit.distance * dir,
-                                                      normal_length > 0.0 ? hit.normal / normal_length : glm::dvec3(0.0),
-                                                      shader.objectPosition(point)};
+                        SurfaceGeometry surface;
+                        surface.position = camera.position + hit.distance * dir;
+                        surface.normal = normal_length > 0.0 ? hit.normal / normal_length : glm::dvec3(0.0);
+                        surface.object_position = shader.objectPosition(point);
+                        // Point samples: textures are read unfiltered, so the converged average is the
+                        // area integral of the image the clipped method filters.
+                        shader.addCornerAttributes(point, surface);
                         colour += shader.shade(point, surface, camera.position, &counters.shadow_rays);
                         covered += 1.0;
                         if (count_objects) addShare(shares, hit.object, 1.0);

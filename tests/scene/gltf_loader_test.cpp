@@ -18,6 +18,7 @@
 #include "scene/camera.h"
 #include "scene/object_motion.h"
 #include "support/gltf_writer.h"
+#include "support/texture_files.h"
 
 namespace clipblur {
 
@@ -477,6 +478,72 @@ TEST(GltfLoader, PrimitiveModesAndIgnoredMaterialFeaturesAreReported) {
     };
     EXPECT_TRUE(has("points and lines are skipped (/meshes/0/primitives/2"));
     EXPECT_TRUE(has("emission is ignored"));
+}
+
+// NORMAL and TEXCOORD_0 become corner attributes (normals by the inverse transpose of the folded node
+// matrix, so they stay normal to the scaled surface), baseColorTexture names its image file beside the
+// .gltf, KHR_texture_transform is ignored with a warning, and a texCoord other than 0 is refused.
+TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
+    const auto folder = testing::validatedAssetDir();
+    testing::writeRgb8Png(folder / "textured_quad.png", 2, 2, {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255});
+    const auto build = [&](int tex_coord, bool transform) {
+        GltfWriter w;
+        const int pos = w.addFloats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 34962);
+        // Unit normals tilted 45 degrees in x and y; UVs the image's corners.
+        const float h = static_cast<float>(std::sqrt(0.5));
+        const int normal = w.addFloats({h, 0, -h, h, 0, -h, 0, h, -h, 0, h, -h}, "VEC3", 34962);
+        const int uv = w.addFloats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 34962);
+        const int idx = w.addIndices({0, 2, 1, 0, 3, 2}, 5123);
+        json info = {{"index", 0}};
+        if (tex_coord != 0) info["texCoord"] = tex_coord;
+        if (transform) {
+            info["extensions"] = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
+            w.doc()["extensionsUsed"] = {"KHR_texture_transform"};
+        }
+        w.doc()["images"] = json::array({{{"uri", "textured_quad.png"}}});
+        w.doc()["textures"] = json::array({{{"source", 0}}});
+        w.doc()["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", info},
+                                                                       {"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}}});
+        w.doc()["meshes"].push_back(
+            {{"primitives", json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", normal}, {"TEXCOORD_0", uv}}},
+                                          {"indices", idx},
+                                          {"material", 0}}})}});
+        setScene(w, {addNode(w, {{"name", "quad"}, {"mesh", 0}, {"scale", {2, 1, 1}}})});
+        return w;
+    };
+    const GltfScene s = loadValid(build(0, true), "textured_quad");
+    ASSERT_EQ(s.objects.size(), 1u);
+    const Mesh& m = s.objects[0].mesh;
+    ASSERT_EQ(m.corner_normals.size(), 6u);
+    ASSERT_EQ(m.corner_uvs.size(), 6u);
+    // Corner 1 is vertex 2 (UV (1, 0), normal (0, h, -h)); corner 4 is vertex 3 (UV (0, 0)).
+    EXPECT_EQ(m.corner_uvs[1], glm::dvec2(1, 0));
+    EXPECT_EQ(m.corner_uvs[4], glm::dvec2(0, 0));
+    EXPECT_EQ(m.corner_uvs[0], glm::dvec2(0, 1));
+    // Scale (2, 1, 1): the inverse transpose divides x by 2. The normal (h, 0, -h) becomes (h/2, 0, -h); it
+    // must stay perpendicular to the scaled surface's tangents. 1e-7: float attributes.
+    const glm::dvec3 n0 = glm::normalize(m.corner_normals[0]);
+    EXPECT_LT(glm::length(n0 - glm::normalize(glm::dvec3(0.5, 0, -1))), 1e-7);
+    const glm::dvec3 n1 = glm::normalize(m.corner_normals[1]);
+    EXPECT_LT(glm::length(n1 - glm::normalize(glm::dvec3(0, 1, -1))), 1e-7);
+    const Material& mat = s.materials[static_cast<std::size_t>(s.objects[0].material)];
+    EXPECT_EQ(mat.base_color, glm::dvec3(0.5));
+    EXPECT_EQ(std::filesystem::path(mat.image.file), folder / "textured_quad.png");
+    EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
+        return w.find("KHR_texture_transform is ignored") != std::string::npos;
+    }));
+
+    const auto file = std::filesystem::path(::testing::TempDir()) / "texcoord1.gltf";
+    build(1, false).writeGltf(file);
+    try {
+        loadGltfScene(file, request());
+        ADD_FAILURE() << "texCoord 1 loaded";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Scene);
+        EXPECT_NE(e.message().find("/materials/0/pbrMetallicRoughness/baseColorTexture: texCoord 1 is not supported"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 namespace {

@@ -123,7 +123,7 @@ TEST(ObjLoader, FacesWithMissingOrTooFewVerticesAreLocated) {
         {(v + "  f\n").c_str(), 4, 3, "this one has 0"},
         {(v + "f 0 1 2\n").c_str(), 4, 3, "vertex index 0 does not exist"},
         {(v + "f 1 -4 2\n").c_str(), 4, 5, "vertex index -4 does not exist: 3 vertices precede it"},
-        {(v + "f 1 2 3\nf 1/1 2/2 x/3\n").c_str(), 5, 11, "'x/3' is not a vertex index"},
+        {(v + "vt 0 0\nvt 1 0\nf 1 2 3\nf 1/1 2/2 x/3\n").c_str(), 7, 11, "'x/3' is not a vertex index"},
         {(v + "f 1 2 3.5\n").c_str(), 4, 7, "'3.5' is not a vertex index"},
         {(v + "f 1 2 -9223372036854775808\n").c_str(), 4, 7, "does not exist"},
         {(v + "f 1 2 99999999999999999999\n").c_str(), 4, 7, "is not a vertex index"},
@@ -169,6 +169,111 @@ TEST(ObjLoader, PolygonsBecomeTrianglesOfTheirArea) {
         return text + face + "\n";
     }()), {}, 2000);
     EXPECT_EQ(circle.triangles.size(), static_cast<std::size_t>(n - 2));
+}
+
+// Corner attributes: `f v/vt/vn` picks each corner's own normal and texture coordinate, a polygon's
+// triangles keep their corners' attributes, vt's v is flipped to t down, and the one `usemtl` names the
+// .mtl material (Kd, map_Kd relative to the .mtl file, which is in another folder than the OBJ).
+TEST(ObjLoader, NormalsUvsAndMaterialOfTheFaceCorners) {
+    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_obj";
+    std::filesystem::create_directories(dir / "lib" / "maps");
+    std::ofstream(dir / "lib" / "maps" / "wood.png") << "not read by the OBJ loader";
+    std::ofstream(dir / "lib" / "wood.mtl") << "# a comment\nnewmtl other\nKd 1 0 0\n"
+                                               "newmtl wood\nKa 1 1 1\nKd 0.5 0.25 0.125\nmap_Kd maps/wood.png\n";
+    const ObjFile file = loadObjFile(writeTemp("attributes.obj",
+                                               "mtllib lib/wood.mtl\n"
+                                               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                               "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                               "vn 0 0 1\nvn 1 0 0\nvn 0 1 0\nvn 0 0 -1\n"
+                                               "usemtl wood\n"
+                                               "f 1/1/4 2/2/3 3/3/2 4/4/1\n"
+                                               "usemtl wood\n"
+                                               "f 1//1 3//2 4//3\n"),
+                                      {}, 100);
+    const Mesh& m = file.mesh;
+    ASSERT_EQ(m.triangles.size(), 3u);
+    ASSERT_EQ(m.corner_normals.size(), 9u);
+    ASSERT_EQ(m.corner_uvs.size(), 9u);
+    // Every corner of the quad's two triangles carries the attributes its position was given with: the
+    // quad's corner at position i (0-based) has vt i+1 and vn 4-i.
+    const glm::dvec2 uv[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};  // (u, 1 - v)
+    const glm::dvec3 normal[4] = {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
+    for (std::size_t c = 0; c < 6; ++c) {
+        const std::uint32_t p = m.triangles[c / 3][c % 3];
+        EXPECT_EQ(m.corner_uvs[c], uv[p]) << "corner " << c;
+        EXPECT_EQ(m.corner_normals[c], normal[p]) << "corner " << c;
+    }
+    // The last face has normals but no texture coordinates: (0, 0).
+    EXPECT_EQ(m.corner_normals[6], glm::dvec3(0, 0, 1));
+    EXPECT_EQ(m.corner_normals[8], glm::dvec3(0, 1, 0));
+    EXPECT_EQ(m.corner_uvs[7], glm::dvec2(0.0));
+    ASSERT_TRUE(file.material.has_value());
+    EXPECT_EQ(file.material->base_color, glm::dvec3(0.5, 0.25, 0.125));
+    EXPECT_EQ(std::filesystem::path(file.material->image.file), dir / "lib" / "maps" / "wood.png");
+    EXPECT_EQ(file.material->image.loc.line, 7);
+    // Deformation keys read the same file without its materials.
+    const Mesh plain = loadObjMesh(dir / "attributes.obj", {}, 100);
+    EXPECT_EQ(plain.triangles, m.triangles);
+    EXPECT_EQ(plain.corner_uvs, m.corner_uvs);
+
+    // Without vn or vt the mesh stays faceted and without UVs, as before.
+    const ObjFile bare = loadObjFile(writeTemp("bare.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), {}, 100);
+    EXPECT_FALSE(bare.mesh.smooth());
+    EXPECT_FALSE(bare.mesh.hasUvs());
+    EXPECT_FALSE(bare.material.has_value());
+}
+
+TEST(ObjLoader, BadAttributeIndicesAreLocated) {
+    const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
+    expectLocatedErrors({
+        {(v + "f 1/2 2 3\n").c_str(), 6, 3, "texture coordinate index 2 does not exist: the file has 1"},
+        {(v + "f 1//0 2 3\n").c_str(), 6, 3, "normal index 0 does not exist"},
+        {(v + "f 1/1/-2 2 3\n").c_str(), 6, 3, "normal index -2 does not exist: 1 normals precede it"},
+        {(v + "f 1/x 2 3\n").c_str(), 6, 3, "'1/x' is not a texture coordinate index"},
+        {(v + "vt 1\nf 1 2 3\n").c_str(), 6, 1, "'vt' needs u and v"},
+        {(v + "vn 0 nan 1\nf 1 2 3\n").c_str(), 6, 6, "'nan' is not a finite number"},
+    });
+}
+
+// Materials: a missing library, a missing texture file (located in the .mtl), an unknown material and a
+// second material in one file are scene errors at the line that names them.
+TEST(ObjLoader, MaterialErrorsAreLocated) {
+    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_obj";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "two.mtl") << "newmtl a\nKd 1 1 1\nnewmtl b\nKd 0 0 0\n";
+    std::ofstream(dir / "bad.mtl") << "newmtl a\nKd 1 1 1\nmap_Kd  nowhere.png\n";
+    std::ofstream(dir / "negative.mtl") << "newmtl a\nKd 1 -1 1\n";
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const auto error = [&](const std::string& name, const std::string& text) {
+        try {
+            loadObjFile(writeTemp(name, text), FileLoc{"job.yaml", 7, 10}, 100);
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ExitCode::Scene);
+            return e;
+        }
+        ADD_FAILURE() << name << " loaded";
+        return Error(ExitCode::Ok, "");
+    };
+    Error e = error("nolib.obj", "mtllib none.mtl\n" + tri);
+    EXPECT_EQ(e.loc().line, 1);
+    EXPECT_EQ(e.loc().column, 8);
+    EXPECT_NE(e.message().find("material library"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find("none.mtl"), std::string::npos) << e.what();
+    e = error("notex.obj", "mtllib bad.mtl\n" + tri);
+    EXPECT_NE(e.loc().file.find("bad.mtl"), std::string::npos) << e.what();
+    EXPECT_EQ(e.loc().line, 3);
+    EXPECT_EQ(e.loc().column, 9);
+    EXPECT_NE(e.message().find("nowhere.png' does not exist"), std::string::npos) << e.what();
+    e = error("negative.obj", "mtllib negative.mtl\n" + tri);
+    EXPECT_EQ(e.loc().line, 2);
+    EXPECT_EQ(e.loc().column, 6);
+    e = error("unknown.obj", "mtllib two.mtl\nusemtl c\n" + tri);
+    EXPECT_EQ(e.loc().line, 2);
+    EXPECT_NE(e.message().find("material 'c' is in no material library"), std::string::npos) << e.what();
+    e = error("second.obj", "mtllib two.mtl\nusemtl a\n" + tri + "usemtl b\nf 1 2 3\n");
+    EXPECT_EQ(e.loc().line, 7);
+    EXPECT_EQ(e.loc().column, 8);
+    EXPECT_NE(e.message().find("one material per OBJ file"), std::string::npos) << e.what();
 }
 
 }  // namespace clipblur

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/error.h"
+
+namespace clipblur {
+
+// A texture's filter footprint: the images of a fragment's raster extents in (s, t), the two sides of
+// a parallelogram centred on the lookup point. Zero sides mean a point lookup at the finest level.
+struct TextureFootprint {
+    glm::dvec2 dx{0.0};
+    glm::dvec2 dy{0.0};
+};
+
+// The process's one OpenImageIO TextureSystem (thread-safe), created on first use, so that scenes without
+// image textures never start it. Every image is read once, turned linear (integer texels are sRGB-encoded:
+// PNG and JPEG 8-bit, glTF's baseColorTexture; float texels are already linear) and MIP-mapped with a box
+// filter in linear light into a private temporary file, so that filtering averages light, not codes.
+class ImageTextures {
+public:
+    static ImageTextures& shared();
+
+    // Reads and converts `file` unless it already was; throws a scene error at `ref` naming the file (and
+    // OpenImageIO's reason) when it is missing or unreadable. Thread-safe.
+    void prepare(const std::string& file, const FileLoc& ref);
+
+    // A prepared image, to look up without finding it by name each time; null when `file` was not prepared.
+    struct Image;
+    const Image* find(const std::string& file) const;
+
+    // Linear RGB of a prepared image at (s, t) (t down from the top row, both repeating), filtered over
+    // `footprint`. Thread-safe.
+    glm::dvec3 lookup(const Image& image, const glm::dvec2& st, const TextureFootprint& footprint) const;
+
+    ~ImageTextures();
+    ImageTextures(const ImageTextures&) = delete;
+    ImageTextures& operator=(const ImageTextures&) = delete;
+
+private:
+    ImageTextures();
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+// sRGB's decoding function (IEC 61966-2-1) for one channel value in [0, 1].
+double srgbToLinear(double code);
+
+}  // namespace clipblur
