@@ -170,6 +170,7 @@ struct ClippedContext {
     TileGrid grid;
     PixelBounds window;
     double t0, t1;  // the whole shutter
+    const ShutterCurve& curve;
     const RenderCallbacks& callbacks;
     const Backdrop& backdrop;  // findBackdrop: empty when no backdrop can exist
 };
@@ -214,9 +215,11 @@ SweepInterval sweepInterval(const PixelBounds& tile, const SubframePlan& plan, i
 struct SegmentSpec {
     double begin = 0.0, end = 0.0;
     double weight = 1.0;
+    double curve_begin = 1.0, curve_end = 1.0;  // the shutter curve at begin and end (ShutterSegment)
     int subframes = 0;  // > 0: this segment's fixed re-clip count
     int index = 0;
     std::span<const int> bands;  // every segment's guard band (guardBandPixels), in order
+    bool next_adjacent = false;  // the next segment begins where this one ends: it opens with our closing set
 };
 
 // Step 1's result: the clipped, shaded fragment sets at the segment's ends and the still image at its start.
@@ -239,7 +242,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     // segment-start image is the answer, with no fragment triangles kept, no closing set and no subframes.
     ends.still_scene = seg.subframes == 0 && sceneIsStill(scene, seg.begin, seg.end);
     ends.both_frames = settings.method != Method::Frame0Only && !ends.still_scene;
-    const bool carry = ends.both_frames && seg.index + 1 < static_cast<int>(seg.bands.size());
+    const bool carry = ends.both_frames && seg.next_adjacent;
     int band = seg.bands[static_cast<std::size_t>(seg.index)];
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
@@ -337,31 +340,52 @@ struct TileOutputs {
     tbb::enumerable_thread_specific<ReclipScratch>& scratches;
 };
 
-// One pixel's sums over a tile's subframes, in subframe order: bit-identical for any thread count.
-Spill subframeTotal(const std::vector<TileSums>& tile_sums, int x, int y) {
+// One pixel's sums over a tile's subframes, in subframe order: bit-identical for any thread count. Each
+// subframe counts `factors[k]` times (the shutter curve; exactly 1 for a box, so the sums are unchanged).
+Spill subframeTotal(const std::vector<TileSums>& tile_sums, std::span<const double> factors, int x, int y) {
     Spill sum;
-    for (const TileSums& s : tile_sums) {
+    for (std::size_t k = 0; k < tile_sums.size(); ++k) {
+        const TileSums& s = tile_sums[k];
         if (!s.box.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
         const std::size_t i = s.box.index(x, y);
-        sum.colour += s.colour[i];
-        sum.covered += s.covered[i];
-        sum.depth += s.depth[i];
-        sum.motion += s.motion[i];
-        if (s.track_objects) addShares(sum.objects, s.objects[i], 1.0);
+        const double f = factors[k];
+        sum.colour += f * s.colour[i];
+        sum.covered += f * s.covered[i];
+        sum.depth += f * s.depth[i];
+        sum.motion += f * s.motion[i];
+        if (s.track_objects) addShares(sum.objects, s.objects[i], f);
     }
     return sum;
 }
 
+// The shutter curve's weight at each subframe time relative to its mean over the segment (linear there,
+// so the midpoints' factors average to 1 exactly in exact arithmetic). With sweep, `tilts` gets the
+// curve's slope over each interval relative to its weight at the interval's middle (SweepPath::tilt).
+std::vector<double> curveFactors(const SegmentSpec& seg, std::span<const double> times, double interval,
+                                 std::vector<double>& tilts) {
+    std::vector<double> factors(times.size(), 1.0);
+    tilts.assign(times.size(), 0.0);
+    if (seg.curve_begin == seg.curve_end) return factors;  // a box: every factor exactly 1
+    const double slope = (seg.curve_end - seg.curve_begin) / (seg.end - seg.begin);
+    const double mean = 0.5 * (seg.curve_begin + seg.curve_end);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+        const double w = seg.curve_begin + slope * (times[k] - seg.begin);  // > 0 strictly inside the segment
+        factors[k] = w / mean;
+        tilts[k] = slope * interval / w;
+    }
+    return factors;
+}
+
 // Sweep: what a tile's subframes left in the window's pixels outside the tile, scaled by w.
-void collectSpills(const std::vector<TileSums>& tile_sums, const PixelBounds& tile, const PixelBounds& window,
-                   double w, std::vector<Spill>& spilled) {
+void collectSpills(const std::vector<TileSums>& tile_sums, std::span<const double> factors, const PixelBounds& tile,
+                   const PixelBounds& window, double w, std::vector<Spill>& spilled) {
     PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
     for (const TileSums& s : tile_sums) reached = reached.unite(s.box);
     const PixelBounds seen = reached.intersect(window);
     for (int y = seen.y0; y < seen.y1; ++y) {
         for (int x = seen.x0; x < seen.x1; ++x) {
             if (tile.contains(x, y)) continue;
-            Spill sum = subframeTotal(tile_sums, x, y);
+            Spill sum = subframeTotal(tile_sums, factors, x, y);
             if (sum.covered == 0.0) continue;
             sum.out = window.index(x, y);
             sum.colour *= w;
@@ -403,6 +427,8 @@ int integrateTile(const ClippedContext& ctx, const SegmentSpec& seg, const Segme
     std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
     const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
     const double half = 0.5 * (te - ts) / std::max(n, 1);
+    std::vector<double> tilts;
+    const std::vector<double> factors = curveFactors(seg, times, 2.0 * half, tilts);
     const TileReclip reclip{scene, ctx.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
                             settings.audit};
     tbb::parallel_for(0, n, [&](int k) {
@@ -416,6 +442,7 @@ int integrateTile(const ClippedContext& ctx, const SegmentSpec& seg, const Segme
             interval.begin = &*begin;
             interval.end = &*end;
             interval.positions = plan.positions[static_cast<std::size_t>(k)];
+            interval.tilt = tilts[static_cast<std::size_t>(k)];
             const IntervalTurns& turn = plan.turns[static_cast<std::size_t>(k)];
             if (n == plan.intervals && !turn.at_positions.empty()) interval.turns = &turn;
         }
@@ -433,11 +460,12 @@ int integrateTile(const ClippedContext& ctx, const SegmentSpec& seg, const Segme
                              ends.still.depth[pixel], {}, sharesAt(ends.still, pixel));
                 continue;
             }
-            const Spill sum = subframeTotal(tile_sums, x, y);
+            const Spill sum = subframeTotal(tile_sums, factors, x, y);
             out.sums.add(pixel_out, w, sum.colour, sum.covered, sum.depth, sum.motion, &sum.objects);
         }
     }
-    if (sweeping && n > 0) collectSpills(tile_sums, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
+    if (sweeping && n > 0)
+        collectSpills(tile_sums, factors, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
     for (const ReclipStats& s : sub_stats) stats.merge(s);
     return n;
 }
@@ -525,6 +553,7 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
         };
         segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
     }
+    if (stats.both_frames) segments = splitAtCurve(segments, ctx.curve);  // frame0_only: the opening image
     if (unsplit > 0)
         warnings.push_back(std::to_string(unsplit) + " shutter segments still hide a surface at both ends at max_segments (" +
                            std::to_string(settings.max_segments) + "); it may show as a hole");
@@ -552,8 +581,17 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
     for (std::size_t s = 0; s < segments.size(); ++s) {
         const int fixed = fixed_total > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
         share += segments[s].weight;
-        renderSegment(ctx, {segments[s].begin, segments[s].end, segments[s].weight, fixed, static_cast<int>(s), bands},
-                      sums, totals);
+        const ShutterSegment& segment = segments[s];
+        const SegmentSpec spec{.begin = segment.begin,
+                               .end = segment.end,
+                               .weight = segment.weight,
+                               .curve_begin = segment.curve_begin,
+                               .curve_end = segment.curve_end,
+                               .subframes = fixed,
+                               .index = static_cast<int>(s),
+                               .bands = bands,
+                               .next_adjacent = s + 1 < segments.size() && segments[s + 1].begin == segment.end};
+        renderSegment(ctx, spec, sums, totals);
     }
     totals.stats.seconds.segments = secondsSince(stage);
 }
@@ -592,6 +630,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const EmbreeScene embree(device, scene, t0, t1, backdrop.behind_everything ? &backdrop.objects : nullptr);
     const Shader shader(scene, t0, t1, settings.shadows ? &embree : nullptr);
     const MeshAdjacency adjacency(scene);
+    const ShutterCurve curve(job.shutter, frame);
     const ClippedContext ctx{job,
                              embree,
                              shader,
@@ -601,6 +640,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                              renderWindow(job),
                              t0,
                              t1,
+                             curve,
                              callbacks,
                              backdrop};
     RenderResult result;
@@ -660,7 +700,13 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     PixelSums total;
     total.resize(pixels, track_objects);
     FrameFragmentStats frame_stats;
-    for (const double t : subframeTimes(t0, t1, n)) {
+    // An accumulation buffer's renders at equal weights; a shutter curve places them at its quantiles
+    // (k + 1/2) / n, as the stochastic method draws its times from the curve.
+    const ShutterCurve curve(job.shutter, frame);
+    std::vector<double> times = subframeTimes(t0, t1, n);
+    if (!curve.box())
+        for (int k = 0; k < n; ++k) times[static_cast<std::size_t>(k)] = curve.timeAt((k + 0.5) / n);
+    for (const double t : times) {
         PixelSums sums;
         sums.resize(pixels, track_objects);
         buildFrameFragments(scene, embree, adjacency, projection, grid, t, shader,
