@@ -145,6 +145,29 @@ TEST(ShutterCurveRender, CentredShutterIsTheLaterShutterShiftedByAQuarterFrame) 
     }
 }
 
+// Shards: a window of a centred-shutter render (the sweep's spills from neighbouring tiles included) has
+// the whole film's pixels, bit for bit, with and without a curve.
+TEST(ShutterCurveRender, CentredShutterWindowHasTheWholeFilmsPixels) {
+    for (const MethodCase& m : kMethods) {
+        for (bool curve : {false, true}) {
+            RenderJob job = jobWith(m.method, m.integration);
+            job.shutter = {-0.25, 0.25, {}};
+            if (curve) job.shutter.curve = {{-0.25, 0.0}, {-0.15, 1.0}, {0.15, 1.0}, {0.25, 0.0}};
+            job.scene.objects.push_back(slidingQuad(4.3, 12.25, 16.0, -0.25));
+            const RenderResult whole = renderFrame(job, 0);
+            job.render.window = PixelBounds::corners(9, 5, 23, 27);
+            const RenderResult part = renderFrame(job, 0);
+            const auto& a = whole.image.find("R")->values;
+            const auto& b = part.image.find("R")->values;
+            int different = 0;
+            for (int y = 5; y < 27; ++y)
+                for (int x = 9; x < 23; ++x)
+                    different += a[whole.image.index(x, y)] == b[part.image.index(x, y)] ? 0 : 1;
+            EXPECT_EQ(different, 0) << m.name << (curve ? " with curve" : "");
+        }
+    }
+}
+
 // A triangle shutter curve (0 at open and close, peak mid-shutter) on a quad sliding 16 px per frame over a
 // 180-degree shutter, against the closed form above. Point subframes: the shutter is cut at the peak and
 // each half's midpoint rule weights subframe k by w(t_k) / mean(w), which integrates the piecewise-linear w
