@@ -31,6 +31,16 @@ const char* textureKind(Texture::Kind kind) {
     return "none";
 }
 
+// The curve as [time, weight] pairs, left out for a box so a box job's export is unchanged.
+json shutterJson(const Shutter& shutter) {
+    json out{{"open", shutter.open}, {"close", shutter.close}};
+    if (shutter.curve.empty()) return out;
+    json curve = json::array();
+    for (const ShutterPoint& p : shutter.curve) curve.push_back(json::array({p.time, p.weight}));
+    out["curve"] = std::move(curve);
+    return out;
+}
+
 json objectJson(const Object& object) {
     json triangles = json::array();
     for (const auto& t : object.mesh.triangles) triangles.push_back(json::array({t[0], t[1], t[2]}));
@@ -80,7 +90,7 @@ nlohmann::json sceneJson(const RenderJob& job) {
             {"config_hash", job.config_hash},
             {"film", {{"width", s.film.width}, {"height", s.film.height}, {"background", vec(s.film.background)}}},
             {"camera", {{"vfov", s.camera.vfov_degrees}, {"keys", std::move(camera_keys)}}},
-            {"shutter", {{"open", job.shutter.open}, {"close", job.shutter.close}}},
+            {"shutter", shutterJson(job.shutter)},
             {"frames", {{"first", job.frames.first}, {"last", job.frames.last}, {"fps", job.frames.fps}}},
             {"frame", job.frames.first},
             {"ambient", vec(s.ambient)},

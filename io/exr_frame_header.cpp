@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <numeric>
+#include <charconv>
+#include <string>
 
 #include <glm/mat4x4.hpp>
 
@@ -16,6 +18,13 @@ ExrMatrix toExr(const glm::dmat4& m) {
     for (int col = 0; col < 4; ++col)
         for (int row = 0; row < 4; ++row) out[static_cast<std::size_t>(4 * col + row)] = static_cast<float>(m[col][row]);
     return out;
+}
+
+// The shortest text that reads back as the same double.
+std::string shortest(double v) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+    return std::string(buffer, end);
 }
 
 }  // namespace
@@ -63,6 +72,10 @@ FrameHeader frameHeader(const RenderJob& job, int frame) {
     h.shutter_open = job.shutter.open;
     h.shutter_close = job.shutter.close;
     h.exposure_seconds = (job.shutter.close - job.shutter.open) / job.frames.fps;
+    for (const ShutterPoint& p : job.shutter.curve) {
+        if (!h.shutter_curve.empty()) h.shutter_curve += ' ';
+        h.shutter_curve += shortest(p.time) + ':' + shortest(p.weight);
+    }
     const Scene& scene = job.scene;
     const ExrCameraMatrices m = exrCameraMatrices(evalCamera(scene.camera, frame + job.shutter.open),
                                                   Projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees));

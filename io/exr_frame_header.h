@@ -19,6 +19,9 @@ struct FrameHeader {
     double shutter_open = 0.0;   // frames, relative to the frame number
     double shutter_close = 1.0;
     double exposure_seconds = 0.0;  // expTime: (close - open) / fps
+    // The shutter curve as "time:weight" pairs (frames relative to the frame), space-separated; empty
+    // for a box, when no attribute is written.
+    std::string shutter_curve;
     ExrMatrix world_to_camera{};    // at shutter open
     ExrMatrix world_to_ndc{};       // at shutter open
 };

@@ -48,6 +48,7 @@ void addFrameHeader(OIIO::ImageSpec& spec, const FrameHeader& h) {
     spec.attribute("clipblur:frame", h.frame);
     spec.attribute("clipblur:shutterOpen", static_cast<float>(h.shutter_open));
     spec.attribute("clipblur:shutterClose", static_cast<float>(h.shutter_close));
+    if (!h.shutter_curve.empty()) spec.attribute("clipblur:shutterCurve", h.shutter_curve);
 }
 
 void addProvenance(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {

@@ -21,9 +21,20 @@ enum class FragmentShading { Centroid, Fan };
 // The name a job file uses for the method.
 const char* methodName(Method method);
 
+// A point of the shutter curve: a time (frames, relative to the frame, as open and close) and the
+// shutter's relative weight there.
+struct ShutterPoint {
+    double time = 0.0;
+    double weight = 1.0;
+};
+
+// Frame k's shutter spans [k + open, k + close]: -1 <= open <= close <= 1 and close - open <= 1, so a
+// centred shutter (-0.25 .. 0.25) opens before its frame. `curve` is empty (a box) or runs from open
+// to close with increasing times and weights >= 0, not all zero (ShutterCurve normalises it).
 struct Shutter {
-    double open = 0.0;   // offsets within the frame, 0 <= open <= close <= 1
+    double open = 0.0;
     double close = 1.0;
+    std::vector<ShutterPoint> curve;
 };
 
 struct FrameRange {

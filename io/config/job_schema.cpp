@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -79,12 +80,51 @@ void readCamera(MapReader map, Camera& camera, std::vector<FileLoc>& key_locs) {
     map.finish();
 }
 
+std::string shortNumber(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+// A curve point is [time, weight]; times run from open to close, strictly increasing.
+std::vector<ShutterPoint> readShutterCurve(const ConfigNode& node, const Shutter& shutter) {
+    const auto& items = asList(node, "shutter.curve");
+    if (items.size() < 2) throwConfigError(node.loc, "'shutter.curve' needs at least two points, [open, w] .. [close, w]");
+    checkCount(node, items, "shutter.curve", kMaxShutterCurvePoints);
+    std::vector<ShutterPoint> curve;
+    bool any_weight = false;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        const std::string what = indexed("shutter.curve", i);
+        const auto& pair = asList(items[i], what);
+        if (pair.size() != 2) throwConfigError(items[i].loc, "'" + what + "' must be [time, weight]");
+        const ShutterPoint p{asNumber(pair[0], what + ".time", -1.0, 1.0), asNumber(pair[1], what + ".weight", 0.0, kBig)};
+        if (i == 0 && p.time != shutter.open)
+            throwConfigError(pair[0].loc, "'" + what + "' must start the curve at 'shutter.open' (" +
+                                              shortNumber(shutter.open) + ")");
+        if (i + 1 == items.size() && p.time != shutter.close)
+            throwConfigError(pair[0].loc, "'" + what + "' must end the curve at 'shutter.close' (" +
+                                              shortNumber(shutter.close) + ")");
+        if (i > 0 && !(p.time > curve.back().time))
+            throwConfigError(pair[0].loc, "'" + what + "' must come after the point before it in time");
+        any_weight = any_weight || p.weight > 0.0;
+        curve.push_back(p);
+    }
+    if (!any_weight) throwConfigError(node.loc, "'shutter.curve' has no positive weight: the shutter would never open");
+    return curve;
+}
+
+// Offsets from the frame; a centred shutter opens before it. The range keeps a frame's shutter within
+// its neighbours' (one frame either way) and at most one frame long.
 void readShutter(MapReader map, Shutter& shutter) {
-    shutter.open = map.number("open", shutter.open, 0.0, 1.0);
+    shutter.open = map.number("open", shutter.open, -1.0, 1.0);
     const ConfigNode* close = map.optional("close");
-    if (close) shutter.close = asNumber(*close, "shutter.close", 0.0, 1.0);
+    if (close) shutter.close = asNumber(*close, "shutter.close", -1.0, 1.0);
     if (shutter.close < shutter.open)
         throwConfigError(close ? close->loc : map.loc(), "'shutter.close' must not be before 'shutter.open'");
+    if (shutter.close - shutter.open > 1.0)
+        throwConfigError(close ? close->loc : map.loc(), "the shutter is open longer than a frame ('shutter.close' - "
+                                                         "'shutter.open' must be at most 1)");
+    if (const ConfigNode* curve = map.optional("curve")) shutter.curve = readShutterCurve(*curve, shutter);
     map.finish();
 }
 

@@ -20,6 +20,7 @@ inline constexpr int kMaxVisibilityRays = 64;
 inline constexpr int kMaxTileSize = 1024;
 inline constexpr int kMaxFrameCount = 1000000;
 inline constexpr int kMaxKeys = 4096;
+inline constexpr int kMaxShutterCurvePoints = 256;
 inline constexpr int kMaxDeformationKeys = 129;  // Embree's time-step limit
 inline constexpr int kMaxDivisions = 4096;
 inline constexpr std::uint64_t kMaxTrianglesPerObject = std::uint64_t{1} << 23;

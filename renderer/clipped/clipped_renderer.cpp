@@ -162,6 +162,7 @@ struct ClippedContext {
     const RenderJob& job;
     const FrameSetup& frame;
     PixelBounds window;
+    const ShutterCurve& curve;
     const Backdrop& backdrop;  // findBackdrop: empty when no backdrop can exist
 };
 
@@ -228,9 +229,11 @@ SweepInterval sweepInterval(const PixelBounds& tile, const SubframePlan& plan, i
 struct SegmentSpec {
     const MotionWindow& window;
     double weight = 1.0;
+    double curve_begin = 1.0, curve_end = 1.0;  // the shutter curve at begin and end (ShutterSegment)
     int subframes = 0;  // > 0: this segment's fixed re-clip count
     int index = 0;
     std::span<const int> bands;  // every segment's guard band (guardBandPixels), in order
+    bool next_adjacent = false;  // the next segment begins where this one ends: it opens with our closing set
 };
 
 // Step 1's result: the clipped, shaded fragment sets at the segment's ends and the still image at its start.
@@ -253,7 +256,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     // segment-start image is the answer, with no fragment triangles kept, no closing set and no subframes.
     ends.still_scene = seg.subframes == 0 && seg.window.still();
     ends.both_frames = settings.method != Method::Frame0Only && !ends.still_scene;
-    const bool carry = ends.both_frames && seg.index + 1 < static_cast<int>(seg.bands.size());
+    const bool carry = ends.both_frames && seg.next_adjacent;
     int band = seg.bands[static_cast<std::size_t>(seg.index)];
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
@@ -366,31 +369,58 @@ struct TileOutputs {
     tbb::enumerable_thread_specific<ReclipScratch>& scratches;
 };
 
+// A tile's subframe sums and the factor each counts with (the shutter curve; exactly 1 for a box).
+struct WeightedSubframes {
+    const std::vector<TileSums>& sums;
+    std::span<const double> factors;
+};
+
 // One pixel's sums over a tile's subframes, in subframe order: bit-identical for any thread count.
-Spill subframeTotal(const std::vector<TileSums>& tile_sums, int x, int y) {
+Spill subframeTotal(const WeightedSubframes& subframes, int x, int y) {
     Spill sum;
-    for (const TileSums& s : tile_sums) {
+    for (std::size_t k = 0; k < subframes.sums.size(); ++k) {
+        const TileSums& s = subframes.sums[k];
         if (!s.box.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
         const std::size_t i = s.box.index(x, y);
-        sum.colour += s.colour[i];
-        sum.covered += s.covered[i];
-        sum.depth += s.depth[i];
-        sum.motion += s.motion[i];
-        if (s.track_objects) addShares(sum.objects, s.objects[i], 1.0);
+        const double f = subframes.factors[k];
+        sum.colour += f * s.colour[i];
+        sum.covered += f * s.covered[i];
+        sum.depth += f * s.depth[i];
+        sum.motion += f * s.motion[i];
+        if (s.track_objects) addShares(sum.objects, s.objects[i], f);
     }
     return sum;
 }
 
+// The shutter curve's weight at each subframe time relative to its mean over the segment (linear there,
+// so the midpoints' factors average to 1 exactly in exact arithmetic). With sweep, `tilts` gets the
+// curve's slope over each interval relative to its weight at the interval's middle (SweepPath::tilt).
+std::vector<double> curveFactors(const SegmentSpec& seg, std::span<const double> times, double interval,
+                                 std::vector<double>& tilts) {
+    std::vector<double> factors(times.size(), 1.0);
+    tilts.assign(times.size(), 0.0);
+    if (seg.curve_begin == seg.curve_end) return factors;  // a box: every factor exactly 1
+    const double slope = (seg.curve_end - seg.curve_begin) / (seg.window.t1 - seg.window.t0);
+    const double mean = 0.5 * (seg.curve_begin + seg.curve_end);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+        const double w = seg.curve_begin + slope * (times[k] - seg.window.t0);  // > 0 strictly inside the segment
+        factors[k] = w / mean;
+        tilts[k] = slope * interval / w;
+    }
+    return factors;
+}
+
 // Sweep: what a tile's subframes left in the window's pixels outside the tile, scaled by w.
-void collectSpills(const std::vector<TileSums>& tile_sums, const PixelBounds& tile, const PixelBounds& window,
-                   double w, std::vector<Spill>& spilled) {
+void collectSpills(const WeightedSubframes& subframes, const PixelBounds& tile, const PixelBounds& window, double w,
+                   std::vector<Spill>& spilled) {
+    const std::vector<TileSums>& tile_sums = subframes.sums;
     PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
     for (const TileSums& s : tile_sums) reached = reached.unite(s.box);
     const PixelBounds seen = reached.intersect(window);
     for (int y = seen.y0; y < seen.y1; ++y) {
         for (int x = seen.x0; x < seen.x1; ++x) {
             if (tile.contains(x, y)) continue;
-            Spill sum = subframeTotal(tile_sums, x, y);
+            Spill sum = subframeTotal(subframes, x, y);
             if (sum.covered == 0.0) continue;
             sum.out = window.index(x, y);
             sum.colour *= w;
@@ -435,6 +465,8 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
     const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
     const double half = 0.5 * (te - ts) / std::max(n, 1);
+    std::vector<double> tilts;
+    const std::vector<double> factors = curveFactors(seg, times, 2.0 * half, tilts);
     const TileReclip reclip{scene, ctx.frame.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
                             settings.audit};
     tbb::parallel_for(0, n, [&](int k) {
@@ -448,6 +480,7 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
             interval.begin = &*begin;
             interval.end = &*end;
             interval.positions = plan.positions[static_cast<std::size_t>(k)];
+            interval.tilt = tilts[static_cast<std::size_t>(k)];
             const IntervalTurns& turn = plan.turns[static_cast<std::size_t>(k)];
             if (n == plan.intervals && !turn.at_positions.empty()) interval.turns = &turn;
         }
@@ -464,11 +497,12 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
                 out.sums.addStill(pixel_out, seg.weight, ends.still, pixel);
                 continue;
             }
-            const Spill sum = subframeTotal(tile_sums, x, y);
+            const Spill sum = subframeTotal({tile_sums, factors}, x, y);
             out.sums.add(pixel_out, w, sum);
         }
     }
-    if (sweeping && n > 0) collectSpills(tile_sums, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
+    if (sweeping && n > 0)
+        collectSpills({tile_sums, factors}, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
     for (const ReclipStats& s : sub_stats) stats.merge(s);
     return n;
 }
@@ -554,6 +588,7 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
         };
         segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
     }
+    if (stats.both_frames) segments = splitAtCurve(segments, ctx.curve);  // frame0_only: the opening image
     if (unsplit > 0)
         warnings.push_back(std::to_string(unsplit) + " shutter segments still hide a surface at both ends at max_segments (" +
                            std::to_string(settings.max_segments) + "); it may show as a hole");
@@ -584,7 +619,16 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
     for (std::size_t s = 0; s < segments.size(); ++s) {
         const int fixed = fixed_total > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
         share += segments[s].weight;
-        renderSegment(ctx, {windows[s], segments[s].weight, fixed, static_cast<int>(s), bands}, sums, totals);
+        const ShutterSegment& segment = segments[s];
+        const SegmentSpec spec{.window = windows[s],
+                               .weight = segment.weight,
+                               .curve_begin = segment.curve_begin,
+                               .curve_end = segment.curve_end,
+                               .subframes = fixed,
+                               .index = static_cast<int>(s),
+                               .bands = bands,
+                               .next_adjacent = s + 1 < segments.size() && segments[s + 1].begin == segment.end};
+        renderSegment(ctx, spec, sums, totals);
     }
     totals.stats.seconds.segments = secondsSince(stage);
 }
@@ -625,7 +669,8 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                             .leave_out = backdrop.behind_everything ? &backdrop.objects : nullptr},
                            callbacks);
     const FrameSetup& setup = build.setup();
-    const ClippedContext ctx{job, setup, renderWindow(job), backdrop};
+    const ShutterCurve curve(job.shutter, frame);
+    const ClippedContext ctx{job, setup, renderWindow(job), curve, backdrop};
     RenderResult result;
     SegmentTotals totals;
     ClippedStats& stats = totals.stats;
@@ -683,7 +728,13 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     PixelSums total;
     total.resize(pixels, track_objects);
     FrameFragmentStats frame_stats;
-    for (const double t : subframeTimes(motion.t0(), motion.t1(), n)) {
+    // An accumulation buffer's renders at equal weights; a shutter curve places them at its quantiles
+    // (k + 1/2) / n, as the stochastic method draws its times from the curve.
+    const ShutterCurve curve(job.shutter, frame);
+    std::vector<double> times = subframeTimes(motion.t0(), motion.t1(), n);
+    if (!curve.box())
+        for (int k = 0; k < n; ++k) times[static_cast<std::size_t>(k)] = curve.timeAt((k + 0.5) / n);
+    for (const double t : times) {
         PixelSums sums;
         sums.resize(pixels, track_objects);
         buildFrameFragments(

@@ -49,4 +49,23 @@ std::vector<ShutterSegment> splitWhereHidden(const std::vector<ShutterSegment>& 
     return out;
 }
 
+std::vector<ShutterSegment> splitAtCurve(const std::vector<ShutterSegment>& segments, const ShutterCurve& curve) {
+    if (curve.box()) return segments;
+    std::vector<ShutterSegment> out;
+    const auto piece = [&](double begin, double end) {
+        const ShutterSegment s{begin, end, curve.mass(begin, end), curve.weightAt(begin), curve.weightAt(end)};
+        if (s.curve_begin > 0.0 || s.curve_end > 0.0) out.push_back(s);
+    };
+    for (const ShutterSegment& s : segments) {
+        double begin = s.begin;
+        for (const double t : curve.times()) {
+            if (t <= s.begin || t >= s.end) continue;
+            piece(begin, t);
+            begin = t;
+        }
+        piece(begin, s.end);
+    }
+    return out;
+}
+
 }  // namespace clipblur

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "renderer/frame_motion.h"
+#include "scene/shutter_curve.h"
 
 namespace clipblur {
 
@@ -20,6 +21,8 @@ int shutterSegments(const FrameMotion& motion, int requested, int max_segments);
 struct ShutterSegment {
     double begin = 0.0, end = 0.0;
     double weight = 1.0;  // 1 / count for equal segments, halved exactly by each split
+    // The shutter curve's (unnormalised) weight at begin and end, linear between: equal for a box.
+    double curve_begin = 1.0, curve_end = 1.0;
 };
 
 // `count` equal segments of [t0, t1]; each boundary is computed once, so neighbours meet at the same double.
@@ -30,5 +33,10 @@ std::vector<ShutterSegment> equalSegments(double t0, double t1, int count);
 // are max_segments. `unsplit` counts the segments still hiding something at the cap.
 std::vector<ShutterSegment> splitWhereHidden(const std::vector<ShutterSegment>& segments, int max_segments,
                                              const std::function<bool(double, double)>& hidden, int& unsplit);
+
+// A shutter curve that is not a box: each segment cut at the curve's breakpoints inside it, so the
+// curve is linear over every piece, with the piece's share of the curve's integral as its weight. Pieces
+// where the curve is 0 throughout are left out (nothing there counts). A box returns `segments` as given.
+std::vector<ShutterSegment> splitAtCurve(const std::vector<ShutterSegment>& segments, const ShutterCurve& curve);
 
 }  // namespace clipblur

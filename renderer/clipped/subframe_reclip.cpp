@@ -403,6 +403,7 @@ void queueSwept(ReclipPass& pass, const Fragment& fragment, const ShadedFragment
     SweepPath shift;
     if (path && path->reach() <= 0.5 * sweep.reach) {
         shift = *path;
+        shift.tilt = sweep.tilt;
         if (shift.moves()) positions = sweep.positions;
     } else {
         ++pass.stats.sweep_unswept;

@@ -80,6 +80,7 @@ struct SweepInterval {
     const IntervalTurns* turns = nullptr;
     // Per object, its motion group (MotionPlan::groups): a pixel's fragments of one group move alike.
     std::span<const std::uint32_t> groups;
+    double tilt = 0.0;  // the shutter curve over the interval (SweepPath::tilt); 0 for a box
 };
 
 // Per px^2 of a swept polygon, what each object adds to its coverage: a fragment's sources with their

@@ -59,6 +59,9 @@ struct SweepPath {
     // and sweptBounds bound the path by the hull of the raster parabola through them instead.
     glm::dvec2 open_offset{0.0}, close_offset{0.0};
     glm::dvec2 open_stretch{1.0}, close_stretch{1.0};
+    // A shutter curve's weight over the interval relative to its weight at s = 0, 1 + tilt s (linear
+    // within a shutter segment): position s counts (1 + tilt s) / positions. 0 for a box shutter.
+    double tilt = 0.0;
 
     // The path of a point at a, m, b (depths > 0) at s = -1/2, 0, 1/2;
     // with a turning camera, unturn_a and unturn_b take homogeneous coordinates at the ends back to the
@@ -104,7 +107,8 @@ inline double signedStretch(const glm::dmat2& map, int axis) {
 
 // The pixel coverage of a convex polygon q moving along `path`, averaged over `positions` equally spaced
 // times, the midpoints s = (m + 1/2) / positions - 1/2, m = 0 .. positions-1: calls add(x, y, weight) per
-// (position, pixel) with the area of that position's piece in the pixel divided by `positions`; the
+// (position, pixel) with the area of that position's piece in the pixel divided by `positions` (and times
+// the shutter curve's 1 + tilt s); the
 // weights sum to area(q) times the share of positions where the stretch is positive along both axes (a
 // surface turning edge-on and away is not there at the others). Axis-aligned rectangles (most fragments inside a surface are whole or partial
 // pixels) take a separable fast path. A template so that a caller summing into pixels does so directly.
@@ -226,13 +230,15 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
     if (axisAlignedRectangle(q)) {
         const RasterBounds box = q.bounds();
         for (int k = 0; k < m; ++k) {
+            const double s = (k + 0.5) / m - 0.5;
             glm::dvec2 offset, stretch;
-            path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);
+            path.place(s, path.turnAt(k, m), offset, stretch);
             if (!(stretch.x > 0.0 && stretch.y > 0.0)) continue;  // edge-on or facing away
+            const double share = scale * (1.0 + path.tilt * s);  // exactly scale without a curve
             const glm::dvec2 at = path.pivot + offset;
             const glm::dvec2 lo = at + stretch * (box.lo - path.pivot), hi = at + stretch * (box.hi - path.pivot);
             cellOverlaps(lo.y, hi.y, [&](int y, double h) {
-                cellOverlaps(lo.x, hi.x, [&](int x, double w) { add(x, y, w * h * scale); });
+                cellOverlaps(lo.x, hi.x, [&](int x, double w) { add(x, y, w * h * share); });
             });
         }
         return;
@@ -240,12 +246,13 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
     SmallPolygon moved;
     moved.n = q.n;
     for (int k = 0; k < m; ++k) {
+        const double s = (k + 0.5) / m - 0.5;
         glm::dvec2 offset, stretch;
-        path.place((k + 0.5) / m - 0.5, path.turnAt(k, m), offset, stretch);
+        path.place(s, path.turnAt(k, m), offset, stretch);
         if (!(stretch.x > 0.0 && stretch.y > 0.0)) continue;
         const glm::dvec2 at = path.pivot + offset;
         for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
-        polygonCells(moved, scale, add);
+        polygonCells(moved, scale * (1.0 + path.tilt * s), add);
     }
 }
 

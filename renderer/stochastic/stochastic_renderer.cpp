@@ -21,6 +21,7 @@
 #include "renderer/worker_threads.h"
 #include "scene/camera.h"
 #include "scene/error.h"
+#include "scene/shutter_curve.h"
 
 namespace clipblur {
 
@@ -47,6 +48,7 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
     if (scene.camera.keys.empty()) throw Error(ExitCode::Render, "the scene has no camera key");
     const double t0 = frame + job.shutter.open;
     const double t1 = frame + job.shutter.close;
+    const ShutterCurve curve(job.shutter, frame);
 
     const FrameMotion motion(scene, t0, t1);
     EmbreeDevice device;
@@ -112,7 +114,8 @@ RenderResult renderStochastic(const RenderJob& job, int frame, const RenderCallb
                     double motion_count = 0.0;
                     std::vector<ObjectShare> shares;  // samples per object, for ID mattes
                     for (const SpaceTimeSample& s : pixel_samples) {
-                        const double t = t0 + (t1 - t0) * s.time;
+                        // Stratified in u, so stratified in the curve's mass (a box: its time).
+                        const double t = curve.box() ? t0 + (t1 - t0) * s.time : curve.timeAt(s.time);
                         const CameraFrame camera = camera_table.at(t);
                         const glm::dvec2 p = projection.toImagePlane(glm::dvec2(x + s.x, y + s.y));
                         // Unnormalised, with e3.dir = 1: the hit distance is the camera depth.

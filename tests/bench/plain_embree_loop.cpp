@@ -116,6 +116,29 @@ glm::dvec3 shadeHit(const Scene& scene, const EmbreeScene& embree, const RTCRayH
     return albedo(material, object_position) * light;
 }
 
+// The shutter time whose share of the shutter curve's integral is u: bisection on the trapezoid sums,
+// so the peer shares no code with the renderer's closed-form inverse.
+double curveTime(const Shutter& shutter, double t0, double u) {
+    const auto integral = [&](double t) {  // from open to t, in frames relative to the frame
+        double sum = 0.0;
+        for (std::size_t i = 0; i + 1 < shutter.curve.size(); ++i) {
+            const ShutterPoint a = shutter.curve[i], b = shutter.curve[i + 1];
+            const double end = std::min(t, b.time);
+            if (end <= a.time) break;
+            const double w_end = a.weight + (b.weight - a.weight) * (end - a.time) / (b.time - a.time);
+            sum += 0.5 * (a.weight + w_end) * (end - a.time);
+        }
+        return sum;
+    };
+    const double target = u * integral(shutter.close);
+    double lo = shutter.open, hi = shutter.close;
+    for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (integral(mid) < target ? lo : hi) = mid;
+    }
+    return t0 + (0.5 * (lo + hi) - shutter.open);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -160,7 +183,9 @@ int main(int argc, char** argv) {
                         jx = (s % side + jx) / side;
                         jy = (s / side + jy) / side;
                     }
-                    const double t = t0 + (t1 - t0) * (time_strata[s] + rng.uniform()) / spp;
+                    const double stratum = time_strata[s] + rng.uniform();
+                    const double t = job.shutter.curve.empty() ? t0 + (t1 - t0) * stratum / spp
+                                                               : curveTime(job.shutter, t0, stratum / spp);
                     glm::dvec3 eye;
                     const glm::dmat3 basis = cameraAt(keys, t, eye);
                     const glm::dvec2 p = projection.toImagePlane(glm::dvec2(x + jx, y + jy));

@@ -47,4 +47,16 @@ TEST(SceneJsonCommand, SpinPanCheckerMatchesTheLoadedScene) {
     EXPECT_EQ(nlohmann::json::parse(j.dump()), j);
 }
 
+// The Cycles peer reads the shutter from here: a curve is exported (so the peer can refuse it), a box
+// is not (a box job's export is what it was).
+TEST(SceneJsonCommand, ShutterCurveIsExportedOnlyWhenGiven) {
+    const std::string path = std::string(CLIPBLUR_SOURCE_DIR) + "/configs/bench/peers/spin_pan_checker.yaml";
+    const nlohmann::json box = cli::sceneJson(loadJob(path, {"shutter.open=-0.25", "shutter.close=0.25"}));
+    EXPECT_EQ(box["shutter"]["open"], -0.25);
+    EXPECT_FALSE(box["shutter"].contains("curve"));
+    const nlohmann::json curve =
+        cli::sceneJson(loadJob(path, {"shutter.open=0", "shutter.close=0.5", "shutter.curve=[[0, 0], [0.25, 1], [0.5, 0]]"}));
+    EXPECT_EQ(curve["shutter"]["curve"], nlohmann::json::parse("[[0, 0], [0.25, 1], [0.5, 0]]"));
+}
+
 }  // namespace clipblur

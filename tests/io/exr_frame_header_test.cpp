@@ -49,3 +49,32 @@ TEST(ExrFrameHeader, FpsIsAnExactRational) {
 }
 
 }  // namespace clipblur
+
+namespace clipblur {
+
+// A centred shutter: the header's offsets are negative, expTime is the open length, the camera matrices
+// are those at frame + open (before the frame), and the curve is written as time:weight pairs. The camera
+// moves 1 along x per frame from x = 0 at frame 0, so at frame 2 - 0.25 the point (1.75, 0, 1) is straight
+// ahead at distance 1 (camera x 0 in OpenEXR camera space).
+TEST(ExrFrameHeader, CentredShutterWithCurve) {
+    RenderJob job;
+    job.frames.fps = 24.0;
+    job.shutter = {-0.25, 0.25, {{-0.25, 0.0}, {-0.15, 1.0}, {0.15, 1.0}, {0.25, 0.0}}};
+    job.scene.film.width = 200;
+    job.scene.film.height = 100;
+    job.scene.camera.vfov_degrees = 90.0;
+    job.scene.camera.keys = {CameraKey{0.0, {0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}},
+                             CameraKey{4.0, {4.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}}};
+    const FrameHeader h = frameHeader(job, 2);
+    EXPECT_EQ(h.shutter_open, -0.25);
+    EXPECT_EQ(h.shutter_close, 0.25);
+    EXPECT_DOUBLE_EQ(h.exposure_seconds, 0.5 / 24.0);
+    EXPECT_EQ(h.shutter_curve, "-0.25:0 -0.15:1 0.15:1 0.25:0");
+    const glm::dvec3 c = rowTimes({1.75, 0.0, 1.0}, h.world_to_camera);
+    EXPECT_NEAR(c.x, 0.0, 1e-6);
+    EXPECT_NEAR(c.z, 1.0, 1e-6);
+    job.shutter.curve.clear();
+    EXPECT_EQ(frameHeader(job, 2).shutter_curve, "") << "a box writes no curve attribute";
+}
+
+}  // namespace clipblur

@@ -224,6 +224,29 @@ TEST(GltfLoader, StepJumpInsideARenderedShutterIsRefused) {
     }
 }
 
+// Frame k's shutter spans [(k + open) / fps, (k + close) / fps] of the glTF timeline, open negative too:
+// a jump at 1 s (frame 24) lies after frame 24's 0 .. 0.5 shutter opens but inside its centred one
+// (23.75 .. 24.25), and before frame 24 of a shutter that opens there (its window is 1e-3 frames before).
+TEST(GltfLoader, CentredShutterMeetsAStepJumpAtItsFrame) {
+    GltfWriter w;
+    const int mesh = addTetraMesh(w);
+    const int node = addNode(w, {{"name", "stepper"}, {"mesh", mesh}});
+    setScene(w, {node});
+    animate(w, node, "translation", "STEP", {0, 1}, {0, 0, 0, 1, 0, 0});
+    GltfRequest r = request();
+    r.frames = {24, 24, 24.0};
+    r.shutter = {0.0, 0.5};
+    EXPECT_EQ(loadValid(w, "step_at_frame", r).objects.size(), 1u);
+    r.shutter = {-0.25, 0.25};
+    try {
+        loadValid(w, "step_at_centred_frame", r);
+        FAIL() << "loaded";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Scene);
+        EXPECT_NE(std::string(e.what()).find("inside the shutter of frame 24"), std::string::npos) << e.what();
+    }
+}
+
 TEST(GltfLoader, CubicSplineIsResampledWithinTheStatedBound) {
     GltfWriter w;
     const int mesh = addTetraMesh(w);

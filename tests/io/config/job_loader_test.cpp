@@ -279,7 +279,20 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"MissingRequired", "e.yaml", "version: 1\nobjects:\n" + kBox, ExitCode::Config, "version", "missing required key 'camera'"},
         ErrorCase{"MissingRequiredNested", "e.yaml", "version: 1\ncamera: {vfov: 30}\nobjects:\n" + kBox, ExitCode::Config, "{vfov", "missing required key 'camera.keys'"},
         ErrorCase{"BadVersion", "e.yaml", "version: 2\n", ExitCode::Config, "2", "version"},
-        ErrorCase{"OutOfRange", "e.yaml", minimalYaml("shutter: {open: 1.5}\n"), ExitCode::Config, "1.5", "must be in [0, 1]"},
+        ErrorCase{"OutOfRange", "e.yaml", minimalYaml("shutter: {open: 1.5}\n"), ExitCode::Config, "1.5", "must be in [-1, 1]"},
+        ErrorCase{"OpenBeforeRange", "e.yaml", minimalYaml("shutter: {open: -1.5, close: 0}\n"), ExitCode::Config, "-1.5", "must be in [-1, 1]"},
+        ErrorCase{"ShutterLongerThanAFrame", "e.yaml", minimalYaml("shutter: {open: -0.5, close: 0.75}\n"), ExitCode::Config, "0.75}", "longer than a frame"},
+        ErrorCase{"ShutterUnknownKey", "e.yaml", minimalYaml("shutter: {open: 0, curv: []}\n"), ExitCode::Config, "curv", "unknown key 'shutter.curv'"},
+        ErrorCase{"CurveOnePoint", "e.yaml", minimalYaml("shutter: {curve: [[0, 1]]}\n"), ExitCode::Config, "[[0, 1]]", "at least two points"},
+        ErrorCase{"CurvePointNotAPair", "e.yaml", minimalYaml("shutter: {curve: [[0, 1, 2], [1, 1]]}\n"), ExitCode::Config, "[0, 1, 2]", "[time, weight]"},
+        ErrorCase{"CurveNotFromOpen", "e.yaml", minimalYaml("shutter: {open: -0.25, close: 0.25, curve: [[-0.2, 1], [0.25, 1]]}\n"),
+                  ExitCode::Config, "-0.2,", "start the curve at 'shutter.open' (-0.25)"},
+        ErrorCase{"CurveNotToClose", "e.yaml", minimalYaml("shutter: {curve: [[0, 1], [0.9, 1]]}\n"), ExitCode::Config, "0.9", "end the curve at 'shutter.close' (1)"},
+        ErrorCase{"CurveTimesNotIncreasing", "e.yaml", minimalYaml("shutter: {curve: [[0, 1], [0.5, 1], [0.5, 2], [1, 1]]}\n"),
+                  ExitCode::Config, "0.5, 2", "come after the point before it"},
+        ErrorCase{"CurveNegativeWeight", "e.yaml", minimalYaml("shutter: {curve: [[0, 1], [1, -2]]}\n"), ExitCode::Config, "-2", "'shutter.curve[1].weight' must be in [0,"},
+        ErrorCase{"CurveAllZero", "e.yaml", minimalYaml("shutter: {curve: [[0, 0], [0.5, 0], [1, 0]]}\n"), ExitCode::Config, "[[0, 0]", "no positive weight"},
+        ErrorCase{"CurveTimeOutOfRange", "e.yaml", minimalYaml("shutter: {curve: [[0, 1], [1.5, 1]]}\n"), ExitCode::Config, "1.5", "must be in [-1, 1]"},
         ErrorCase{"CloseBeforeOpen", "e.yaml", minimalYaml("shutter: {open: 0.5, close: 0.25}\n"), ExitCode::Config, "0.25", "not be before"},
         ErrorCase{"HugeWidth", "e.yaml", minimalYaml("film: {width: 100000}\n"), ExitCode::Config, "100000", "16384"},
         ErrorCase{"MeshTooBig", "e.yaml", "version: 1\n" + kCam + "objects:\n  - primitive: {type: grid, divisions: 4096}\n",
@@ -323,6 +336,29 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"ViewParallelToUp", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"view\": [0, -1, 0]}]},\n" + kJsonBox + "}", ExitCode::Config, "{\"view\"", "parallel"},
         ErrorCase{"BoolAsString", "e.json", kJsonHead + " \"render\": {\"shadows\": \"true\"},\n" + kJsonBox + "}", ExitCode::Config, "\"true\"", "true or false"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// A centred 180-degree shutter with a trapezoid curve, the example of docs/config.md, in both spellings.
+TEST(JobLoader, CentredShutterWithCurveIsAccepted) {
+    const RenderJob yaml = loadJobFromText(
+        minimalYaml("shutter:\n  open: -0.25\n  close: 0.25\n  curve: [[-0.25, 0], [-0.15, 1], [0.15, 1], [0.25, 0]]\n"),
+        "c.yaml");
+    EXPECT_EQ(yaml.shutter.open, -0.25);
+    EXPECT_EQ(yaml.shutter.close, 0.25);
+    ASSERT_EQ(yaml.shutter.curve.size(), 4u);
+    EXPECT_EQ(yaml.shutter.curve[1].time, -0.15);
+    EXPECT_EQ(yaml.shutter.curve[1].weight, 1.0);
+    EXPECT_EQ(yaml.shutter.curve[3].weight, 0.0);
+    const RenderJob json = loadJobFromText(
+        kJsonHead + " \"shutter\": {\"open\": -0.25, \"close\": 0.25, \"curve\": [[-0.25, 0], [-0.15, 1], [0.15, 1], "
+                    "[0.25, 0]]},\n" + kJsonBox + "}",
+        "c.json");
+    ASSERT_EQ(json.shutter.curve.size(), 4u);
+    EXPECT_EQ(json.shutter.curve[2].time, 0.15);
+    // Open past -1 + 1 frame: a whole frame's shutter ending at the frame is the longest allowed.
+    const RenderJob whole = loadJobFromText(minimalYaml("shutter: {open: -1, close: 0}\n"), "w.yaml");
+    EXPECT_EQ(whole.shutter.open, -1.0);
+    EXPECT_TRUE(whole.shutter.curve.empty());
+}
 
 TEST(JobLoader, LargestFilmIsAccepted) {
     // Both side caps are inclusive; their product, 2^28 pixels, is the largest film.

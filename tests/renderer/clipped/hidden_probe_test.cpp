@@ -133,6 +133,21 @@ TEST(HiddenProbe, AutoSegmentsDrawTheWallBothEndsHide) {
     EXPECT_EQ(automatic.image.find("R")->values, two.image.find("R")->values);  // the same two segments
 }
 
+// The same crossing a centred shutter sees: every key half a frame earlier and the shutter -0.5 .. 0.5.
+// The probes run at negative times and find the same hole; auto segments split once and draw the wall.
+TEST(HiddenProbe, CentredShutterFindsTheSameHole) {
+    RenderJob job = crossingJob();
+    for (Object& o : job.scene.objects)
+        for (TransformKey& k : o.transform) k.time -= 0.5;
+    job.shutter = {-0.5, 0.5, {}};
+    const RenderResult r = renderFrame(job, 0);
+    EXPECT_EQ(r.stats.clipped().segments, 2);
+    EXPECT_EQ(r.stats.clipped().hidden_probe_hits, 64);
+    double worst = 0.0;
+    for (float v : r.image.find("R")->values) worst = std::max(worst, std::abs(v - 1.0));
+    EXPECT_LT(worst, 1e-5);  // as AutoSegmentsDrawTheWallBothEndsHide: coverage sums to 1 to float rounding
+}
+
 // At max_segments the hole cannot be split away: the render keeps the one segment and says so.
 TEST(HiddenProbe, SegmentsLeftHidingSomethingAtTheCapAreWarnedAbout) {
     RenderJob job = crossingJob();
