@@ -385,10 +385,13 @@ StatementCounts countStatements(const std::string& text) {
     return count;
 }
 
+// Whether `mtllib` and `usemtl` are read (a file's own materials) or ignored (a mesh alone).
+enum class Materials { Ignored, Read };
+
 ObjFile parse(const std::string& text, const std::string& name, const FileLoc& ref, std::uint64_t max_triangles,
-              bool materials) {
+              Materials materials) {
     ObjParser parser(name, ref, countStatements(text), max_triangles);
-    parser.read_materials = materials;
+    parser.read_materials = materials == Materials::Read;
     forEachLine(text, [&](std::string_view line, int number) { parser.read(line, number); });
     return parser.finish();
 }
@@ -397,7 +400,7 @@ ObjFile parse(const std::string& text, const std::string& name, const FileLoc& r
 
 Mesh parseObjMesh(const std::string& text, const std::string& name, const FileLoc& ref,
                   std::uint64_t max_triangles, ObjFaces* faces) {
-    ObjFile file = parse(text, name, ref, max_triangles, false);
+    ObjFile file = parse(text, name, ref, max_triangles, Materials::Ignored);
     if (faces) *faces = std::move(file.faces);
     return std::move(file.mesh);
 }
@@ -409,7 +412,7 @@ Mesh loadObjMesh(const std::filesystem::path& file, const FileLoc& ref, std::uin
 
 ObjFile parseObjFile(const std::string& text, const std::string& name, const FileLoc& ref,
                      std::uint64_t max_triangles) {
-    return parse(text, name, ref, max_triangles, true);
+    return parse(text, name, ref, max_triangles, Materials::Read);
 }
 
 ObjFile loadObjFile(const std::filesystem::path& file, const FileLoc& ref, std::uint64_t max_triangles) {

@@ -29,7 +29,7 @@ void checkCount(const ConfigNode& list, const std::vector<ConfigNode>& items, co
 glm::dvec3 nonZeroDirection(MapReader& map, std::string_view key, glm::dvec3 fallback) {
     const ConfigNode* n = map.optional(key);
     if (!n) return fallback;
-    const glm::dvec3 v = asVec3(*n, map.keyPath(key), -kBig, kBig, false);
+    const glm::dvec3 v = asVec3(*n, map.keyPath(key), -kBig, kBig, ScalarForm::Refused);
     if (!(glm::length(v) > 0.0)) throwConfigError(n->loc, "'" + map.keyPath(key) + "' must not be the zero vector");
     return v;
 }
@@ -37,7 +37,7 @@ glm::dvec3 nonZeroDirection(MapReader& map, std::string_view key, glm::dvec3 fal
 void readFilm(MapReader map, Film& film) {
     film.width = map.integer("width", film.width, 1, kMaxImageSide);
     film.height = map.integer("height", film.height, 1, kMaxImageSide);
-    film.background = map.vec3("background", film.background, 0.0, kBig, true);
+    film.background = map.vec3("background", film.background, 0.0, kBig, ScalarForm::Allowed);
     map.finish();
 }
 
@@ -64,7 +64,7 @@ void readCamera(MapReader map, Camera& camera, std::vector<FileLoc>& key_locs) {
         MapReader k(keys[i], indexed("camera.keys", i));
         CameraKey key;
         key.time = k.number("time", 0.0, -kBig, kBig);
-        key.position = k.vec3("position", key.position, -kBig, kBig, false);
+        key.position = k.vec3("position", key.position, -kBig, kBig, ScalarForm::Refused);
         key.view = nonZeroDirection(k, "view", key.view);
         key.up = nonZeroDirection(k, "up", key.up);
         k.finish();
@@ -153,14 +153,14 @@ std::map<std::string, int> readMaterials(const ConfigNode* node, std::vector<Mat
             if (!by_name.emplace(name, static_cast<int>(i)).second)
                 throwConfigError(name_node.loc, "duplicate material name '" + name + "'");
             Material mat;
-            mat.base_color = m.vec3("color", mat.base_color, 0.0, kBig, true);
+            mat.base_color = m.vec3("color", mat.base_color, 0.0, kBig, ScalarForm::Allowed);
             mat.two_sided = m.boolean("two_sided", mat.two_sided);
             if (const ConfigNode* tex = m.optional("texture")) {
                 MapReader t(*tex, m.keyPath("texture"));
                 mat.texture.kind = asChoice(t.required("type"), t.keyPath("type"), {"checker", "stripe"}) == 0
                                        ? Texture::Kind::Checker
                                        : Texture::Kind::Stripe;
-                mat.texture.color2 = t.vec3("color2", mat.texture.color2, 0.0, kBig, true);
+                mat.texture.color2 = t.vec3("color2", mat.texture.color2, 0.0, kBig, ScalarForm::Allowed);
                 mat.texture.scale = t.number("scale", mat.texture.scale, kTiny, kBig);
                 t.finish();
             }
@@ -182,14 +182,14 @@ void readLights(const ConfigNode* node, std::vector<Light>& lights) {
         light.kind = asChoice(l.required("type"), l.keyPath("type"), {"directional", "point"}) == 0
                          ? Light::Kind::Directional
                          : Light::Kind::Point;
-        light.color = l.vec3("color", light.color, 0.0, kBig, true);
+        light.color = l.vec3("color", light.color, 0.0, kBig, ScalarForm::Allowed);
         light.intensity = l.number("intensity", light.intensity, 0.0, kBig);
         // Only the key that fits the type is consumed; the other one is reported as unknown.
         if (light.kind == Light::Kind::Directional) {
             if (!l.has("direction")) l.required("direction");
             light.direction = nonZeroDirection(l, "direction", light.direction);
         } else {
-            light.position = asVec3(l.required("position"), l.keyPath("position"), -kBig, kBig, false);
+            light.position = asVec3(l.required("position"), l.keyPath("position"), -kBig, kBig, ScalarForm::Refused);
         }
         l.finish();
         lights.push_back(light);
@@ -229,7 +229,7 @@ MeshSource readPrimitive(MapReader p) {
             break;
         }
         case MeshSource::Kind::Box:
-            src.size = p.vec3("size", src.size, kTiny, kBig, true);
+            src.size = p.vec3("size", src.size, kTiny, kBig, ScalarForm::Allowed);
             src.triangles = 12;
             break;
         case MeshSource::Kind::Sphere:
@@ -246,7 +246,7 @@ MeshSource readPrimitive(MapReader p) {
 TransformKey readTransformKey(MapReader k) {
     TransformKey key;
     key.time = k.number("time", 0.0, -kBig, kBig);
-    key.translate = k.vec3("translate", key.translate, -kBig, kBig, false);
+    key.translate = k.vec3("translate", key.translate, -kBig, kBig, ScalarForm::Refused);
     if (const ConfigNode* r = k.optional("rotate")) {
         MapReader rot(*r, k.keyPath("rotate"));
         const glm::dvec3 axis = nonZeroDirection(rot, "axis", glm::dvec3(0.0, 1.0, 0.0));
@@ -254,7 +254,7 @@ TransformKey readTransformKey(MapReader k) {
         rot.finish();
         key.rotate = glm::angleAxis(angle * M_PI / 180.0, glm::normalize(axis));
     }
-    key.scale = k.vec3("scale", key.scale, kTiny, kBig, true);
+    key.scale = k.vec3("scale", key.scale, kTiny, kBig, ScalarForm::Allowed);
     k.finish();
     return key;
 }
@@ -428,7 +428,7 @@ JobDescription readJobDescription(const ConfigNode& root) {
     if (const ConfigNode* n = top.optional("frames")) readFrames(MapReader(*n, "frames"), job.frames);
     const auto materials = readMaterials(top.optional("materials"), job.scene.materials);
     readLights(top.optional("lights"), job.scene.lights);
-    job.scene.ambient = top.vec3("ambient", job.scene.ambient, 0.0, kBig, true);
+    job.scene.ambient = top.vec3("ambient", job.scene.ambient, 0.0, kBig, ScalarForm::Allowed);
 
     // With a glTF scene the job's objects are additions and may be left out.
     const ConfigNode* objects_node = scene_file.path.empty() ? &top.required("objects") : top.optional("objects");

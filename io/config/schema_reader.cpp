@@ -78,9 +78,9 @@ std::string MapReader::string(std::string_view key, std::string fallback) {
     return n ? asString(*n, keyPath(key)) : fallback;
 }
 
-glm::dvec3 MapReader::vec3(std::string_view key, glm::dvec3 fallback, double lo, double hi, bool allow_scalar) {
+glm::dvec3 MapReader::vec3(std::string_view key, glm::dvec3 fallback, double lo, double hi, ScalarForm scalar) {
     const ConfigNode* n = optional(key);
-    return n ? asVec3(*n, keyPath(key), lo, hi, allow_scalar) : fallback;
+    return n ? asVec3(*n, keyPath(key), lo, hi, scalar) : fallback;
 }
 
 void MapReader::finish() const {
@@ -130,7 +130,8 @@ std::string asString(const ConfigNode& node, const std::string& what) {
     return node.scalar;
 }
 
-glm::dvec3 asVec3(const ConfigNode& node, const std::string& what, double lo, double hi, bool allow_scalar) {
+glm::dvec3 asVec3(const ConfigNode& node, const std::string& what, double lo, double hi, ScalarForm scalar) {
+    const bool allow_scalar = scalar == ScalarForm::Allowed;
     if (allow_scalar && node.isScalar()) return glm::dvec3(asNumber(node, what, lo, hi));
     if (!node.isSequence() || node.items.size() != 3)
         throwConfigError(node.loc, "'" + what + "' must be a list of 3 numbers" +

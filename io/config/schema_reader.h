@@ -13,6 +13,9 @@
 
 namespace clipblur::config {
 
+// Whether a vector value may also be written as one number meaning all three components (colours).
+enum class ScalarForm { Refused, Allowed };
+
 // Typed, range-checked access to one map of the document. Every key read is marked consumed, and
 // finish() rejects whatever was not: a key the schema does not know can never be silently ignored.
 // `path` names the map in messages ("film", "objects[2].transform[0]").
@@ -34,7 +37,7 @@ public:
     bool boolean(std::string_view key, bool fallback);
     std::string string(std::string_view key, std::string fallback);
     // Three numbers, or one number repeated (a grey colour, a uniform scale).
-    glm::dvec3 vec3(std::string_view key, glm::dvec3 fallback, double lo, double hi, bool allow_scalar);
+    glm::dvec3 vec3(std::string_view key, glm::dvec3 fallback, double lo, double hi, ScalarForm scalar);
 
     // Errors, located at the first key not read, when any key is left over.
     void finish() const;
@@ -51,7 +54,7 @@ std::int64_t asInteger(const ConfigNode& node, const std::string& what, std::int
 std::uint64_t asUnsigned(const ConfigNode& node, const std::string& what);
 bool asBool(const ConfigNode& node, const std::string& what);
 std::string asString(const ConfigNode& node, const std::string& what);
-glm::dvec3 asVec3(const ConfigNode& node, const std::string& what, double lo, double hi, bool allow_scalar);
+glm::dvec3 asVec3(const ConfigNode& node, const std::string& what, double lo, double hi, ScalarForm scalar);
 const std::vector<ConfigNode>& asList(const ConfigNode& node, const std::string& what);
 
 // Index of the node's string among `names`; errors list the accepted names.

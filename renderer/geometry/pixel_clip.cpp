@@ -54,7 +54,8 @@ double TriangleClipper::crossingOrdinate(int edge, int axis, double c) const {
     return std::clamp(val, std::min(p[o], q[o]), std::max(p[o], q[o]));
 }
 
-void TriangleClipper::clipAxis(const Piece& in, int axis, double c, bool keep_greater, Piece& out) const {
+void TriangleClipper::clipAxis(const Piece& in, int axis, double c, Keep keep, Piece& out) const {
+    const bool keep_greater = keep == Keep::Above;
     out.poly.clear();
     const ConvexPolygon& p = in.poly;
     for (int i = 0; i < p.n; ++i) {
@@ -84,15 +85,15 @@ void TriangleClipper::clipToStrip(double y0, double y1, Piece& out) const {
     }
     tri.poly.n = 3;
     Piece low;
-    clipAxis(tri, 1, y0, true, low);
-    clipAxis(low, 1, y1, false, out);
+    clipAxis(tri, 1, y0, Keep::Above, low);
+    clipAxis(low, 1, y1, Keep::Below, out);
 }
 
 void TriangleClipper::clipToColumn(const Piece& strip, double x0, double x1, ConvexPolygon& out) const {
     Piece left;
-    clipAxis(strip, 0, x0, true, left);
+    clipAxis(strip, 0, x0, Keep::Above, left);
     Piece both;
-    clipAxis(left, 0, x1, false, both);
+    clipAxis(left, 0, x1, Keep::Below, both);
     out = both.poly;
 }
 

@@ -42,7 +42,8 @@ public:
     void clipToPixel(int px, int py, ConvexPolygon& out) const;
 
 private:
-    void clipAxis(const Piece& in, int axis, double c, bool keep_greater, Piece& out) const;
+    enum class Keep { Below, Above };  // the side of the line axis = c that is kept
+    void clipAxis(const Piece& in, int axis, double c, Keep keep, Piece& out) const;
     double crossingOrdinate(int edge, int axis, double c) const;
 
     std::array<glm::dvec2, 3> tri_;    // counter-clockwise
