@@ -229,7 +229,7 @@ public:
         if (static_cast<std::size_t>(scene) >= model_.scenes.size())
             reader_.fail("/scene", "scene " + std::to_string(scene) + " does not exist");
         for (const int root : model_.scenes[static_cast<std::size_t>(scene)].nodes)
-            visit(root, {}, pointer("scenes", static_cast<std::size_t>(scene)) + "/nodes");
+            visit(root, pointer("scenes", static_cast<std::size_t>(scene)) + "/nodes");
         pickCamera();
         if (!warnings_.empty()) out_.warnings.assign(warnings_.begin(), warnings_.end());
         return std::move(out_);
@@ -406,19 +406,33 @@ private:
         return model_.meshes[static_cast<std::size_t>(mesh)].primitives[0].targets.size();
     }
 
-    void visit(int index, std::vector<std::size_t> chain, const std::string& where) {
-        if (index < 0 || static_cast<std::size_t>(index) >= nodes_.size())
-            reader_.fail(where, "node " + std::to_string(index) + " does not exist");
-        const auto node = static_cast<std::size_t>(index);
-        if (chain.size() >= kMaxHierarchyDepth)
-            reader_.fail(pointer("nodes", node), "the hierarchy is deeper than " + std::to_string(kMaxHierarchyDepth) + " levels");
-        if (!visited_.insert(node).second)
-            reader_.fail(pointer("nodes", node), "the node has two parents or lies on a cycle");
-        chain.push_back(node);
-        const tinygltf::Node& n = model_.nodes[node];
-        if (n.mesh >= 0) addMeshInstance(chain);
-        if (n.camera >= 0) cameras_.push_back(chain);
-        for (const int child : n.children) visit(child, chain, pointer("nodes", node) + "/children");
+    // Depth first, children in order, with an explicit stack: a hierarchy kMaxHierarchyDepth deep must
+    // not depend on how large the compiler makes a recursive frame (sanitizers make it much larger).
+    void visit(int root, const std::string& root_where) {
+        struct Pending {
+            int index;
+            std::vector<std::size_t> chain;  // the ancestors
+            std::string where;
+        };
+        std::vector<Pending> pending{{root, {}, root_where}};
+        while (!pending.empty()) {
+            Pending p = std::move(pending.back());
+            pending.pop_back();
+            if (p.index < 0 || static_cast<std::size_t>(p.index) >= nodes_.size())
+                reader_.fail(p.where, "node " + std::to_string(p.index) + " does not exist");
+            const auto node = static_cast<std::size_t>(p.index);
+            if (p.chain.size() >= kMaxHierarchyDepth)
+                reader_.fail(pointer("nodes", node),
+                             "the hierarchy is deeper than " + std::to_string(kMaxHierarchyDepth) + " levels");
+            if (!visited_.insert(node).second)
+                reader_.fail(pointer("nodes", node), "the node has two parents or lies on a cycle");
+            p.chain.push_back(node);
+            const tinygltf::Node& n = model_.nodes[node];
+            if (n.mesh >= 0) addMeshInstance(p.chain);
+            if (n.camera >= 0) cameras_.push_back(p.chain);
+            for (auto child = n.children.rbegin(); child != n.children.rend(); ++child)
+                pending.push_back({*child, p.chain, pointer("nodes", node) + "/children"});
+        }
     }
 
     // Nodes of the chain from the deepest animated one down are split: the motion above, a static tail.

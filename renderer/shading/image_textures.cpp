@@ -1,6 +1,7 @@
 #include "renderer/shading/image_textures.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -60,8 +61,20 @@ struct ImageTextures::State {
 };
 
 ImageTextures& ImageTextures::shared() {
-    static ImageTextures instance;
-    return instance;
+    // Never destroyed: OpenImageIO 2.4's TextureSystem::destroy deletes the system through a pointer of
+    // the wrong type (ASan: new-delete-type-mismatch inside libOpenImageIO), and the process ends here
+    // anyway. Reachable from this static to its end, so it is no leak; only the prepared files go.
+    static ImageTextures* const instance = [] {
+        auto* textures = new ImageTextures;
+        std::atexit([] { ImageTextures::shared().removePreparedFiles(); });
+        return textures;
+    }();
+    return *instance;
+}
+
+void ImageTextures::removePreparedFiles() {
+    std::error_code ignored;
+    std::filesystem::remove_all(state_->folder, ignored);
 }
 
 ImageTextures::ImageTextures() : state_(std::make_unique<State>()) {
@@ -73,11 +86,7 @@ ImageTextures::ImageTextures() : state_(std::make_unique<State>()) {
     state_->folder = std::filesystem::temp_directory_path() / ("clipblur-textures-" + std::to_string(::getpid()));
 }
 
-ImageTextures::~ImageTextures() {
-    OIIO::TextureSystem::destroy(state_->system, true);
-    std::error_code ignored;
-    std::filesystem::remove_all(state_->folder, ignored);
-}
+ImageTextures::~ImageTextures() = default;
 
 void ImageTextures::prepare(const std::string& file, const FileLoc& ref) {
     const std::lock_guard lock(state_->mutex);

@@ -42,6 +42,7 @@ public:
 
 private:
     ImageTextures();
+    void removePreparedFiles();
     struct State;
     std::unique_ptr<State> state_;
 };
