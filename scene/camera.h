@@ -51,18 +51,6 @@ private:
 // The camera at absolute time t (frames): the key segment containing t, held constant outside the keys.
 CameraFrame evalCamera(const Camera& camera, double t);
 
-// Whether same(frame at t0, frame at t) holds for t = t1 and every key time inside (t0, t1). Between keys
-// the camera moves linearly and turns at a constant rate by less than pi, so for a comparison of position
-// or orientation these times decide every t in [t0, t1].
-template <class Same>
-bool cameraKeeps(const Camera& camera, double t0, double t1, Same&& same) {
-    const CameraFrame open = evalCamera(camera, t0);
-    if (!same(open, evalCamera(camera, t1))) return false;
-    for (const CameraKey& key : camera.keys)
-        if (key.time > t0 && key.time < t1 && !same(open, evalCamera(camera, key.time))) return false;
-    return true;
-}
-
 // Image plane (p1, p2) to raster coordinates (x right, y down, pixel centres at +0.5) and back.
 struct Projection {
     int width = 0;
