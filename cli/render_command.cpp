@@ -26,6 +26,7 @@
 #include "io/progress_timing.h"
 #include "io/shard.h"
 #include "io/stats_writer.h"
+#include "renderer/image_module.h"
 #include "renderer/render.h"
 #include "scene/error.h"
 
@@ -283,6 +284,8 @@ Action addRenderCommand(CLI::App& app) {
         // Every path is resolved and checked before rendering so a bad one fails before any work is done.
         const std::vector<FrameFiles> frames = planFrames(job, *opts, shard);
         checkFrameFiles(frames, read);
+        // Images are written by the image module (OpenImageIO): it loads while the frames render.
+        preloadImageModule();
 
         std::optional<tbb::global_control> limit;
         if (opts->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, opts->threads);

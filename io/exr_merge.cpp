@@ -4,10 +4,9 @@
 #include <cstring>
 #include <memory>
 
-#include <OpenImageIO/imageio.h>
-
 #include "io/atomic_file.h"
 #include "io/shard.h"
+#include "renderer/image_module.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -19,18 +18,14 @@ static FrameExpectation resolveExpectation(const std::string& framePath, int cou
     const bool needSize = expected.width <= 0 || expected.height <= 0;
     if (!needSize && !expected.config_hash.empty() && !expected.channels.empty()) return expected;
     for (int i = 0; i < count; ++i) {
-        auto in = OIIO::ImageInput::open(shardPath(framePath, {i, count}));
-        if (!in) {
-            OIIO::geterror();  // clear the pending global error so it cannot leak into a later message
-            continue;
-        }
-        const OIIO::ImageSpec& spec = in->spec();
+        ImageFile file;
+        if (!imageModule().read(shardPath(framePath, {i, count}), ImageRead::Header, file).empty()) continue;
         if (needSize) {
-            expected.width = spec.full_width;
-            expected.height = spec.full_height;
+            expected.width = file.full_width;
+            expected.height = file.full_height;
         }
-        if (expected.config_hash.empty()) expected.config_hash = spec.get_string_attribute(kConfigHashKey);
-        if (expected.channels.empty()) expected.channels = spec.channelnames;
+        if (expected.config_hash.empty()) expected.config_hash = file.stringAttribute(kConfigHashKey);
+        if (expected.channels.empty()) expected.channels = file.channels;
         break;
     }
     return expected;
@@ -68,13 +63,10 @@ bool frameIsMerged(const std::string& framePath, const FrameExpectation& expecte
     want.width = expected.width;
     want.height = expected.height;
     if (want.width <= 0 || want.height <= 0) {
-        auto in = OIIO::ImageInput::open(framePath);
-        if (!in) {
-            OIIO::geterror();
-            return false;
-        }
-        want.width = in->spec().full_width;
-        want.height = in->spec().full_height;
+        ImageFile file;
+        if (!imageModule().read(framePath, ImageRead::Header, file).empty()) return false;
+        want.width = file.full_width;
+        want.height = file.full_height;
     }
     want.window = PixelBounds::sized(0, 0, want.width, want.height);
     want.config_hash = expected.config_hash;
@@ -85,13 +77,6 @@ bool frameIsMerged(const std::string& framePath, const FrameExpectation& expecte
 std::vector<int> pendingShards(const std::string& framePath, int count, const FrameExpectation& expected) {
     if (frameIsMerged(framePath, expected)) return {};
     return checkShards(framePath, count, expected).incomplete;
-}
-
-static bool samePixelTypes(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b) {
-    if (a.nchannels != b.nchannels) return false;
-    for (int c = 0; c < a.nchannels; ++c)
-        if (a.channelformat(c) != b.channelformat(c)) return false;
-    return true;
 }
 
 void mergeShards(const std::string& framePath, int count, const FrameExpectation& expected) {
@@ -105,45 +90,32 @@ void mergeShards(const std::string& framePath, int count, const FrameExpectation
     const int width = check.resolved.width;
     const int height = check.resolved.height;
 
-    OIIO::ImageSpec outSpec;
-    std::vector<std::byte> frame;
-    std::size_t pixelBytes = 0;
+    ImageFile frame;
     for (int i = 0; i < count; ++i) {
         const std::string path = shardPath(framePath, {i, count});
-        auto in = OIIO::ImageInput::open(path);
-        if (!in) throw Error(ExitCode::Output, "cannot reopen shard " + path + ": " + OIIO::geterror());
-        const OIIO::ImageSpec& spec = in->spec();
+        ImageFile shard;
+        if (const std::string why = imageModule().read(path, ImageRead::HeaderAndPixels, shard); !why.empty())
+            throw Error(ExitCode::Output, "cannot read shard " + path + ": " + why);
         if (i == 0) {
-            outSpec = spec;
-            outSpec.x = 0;
-            outSpec.y = 0;
-            outSpec.width = width;
-            outSpec.height = height;
-            outSpec.erase_attribute(kTileIndexKey);
-            outSpec.erase_attribute(kTileCountKey);
-            pixelBytes = spec.pixel_bytes(true);
-            frame.resize(pixelBytes * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-        } else if (!samePixelTypes(spec, outSpec)) {
+            frame = shard;
+            frame.window = PixelBounds::sized(0, 0, width, height);
+            frame.erase(kTileIndexKey);
+            frame.erase(kTileCountKey);
+            frame.pixels.assign(frame.window.area() * frame.channels.size(), 0.0f);
+        } else if (shard.types != frame.types) {
             throw Error(ExitCode::Output, "shard " + path + " stores different pixel types than shard 0");
         }
-        std::vector<std::byte> pixels(spec.image_bytes(true));
-        if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeUnknown, pixels.data()))
-            throw Error(ExitCode::Output, "cannot read shard " + path + ": " + in->geterror());
-        const std::size_t rowBytes = pixelBytes * static_cast<std::size_t>(spec.width);
-        for (int row = 0; row < spec.height; ++row) {
-            const std::size_t dst = (static_cast<std::size_t>(spec.y + row) * width + spec.x) * pixelBytes;
-            std::memcpy(frame.data() + dst, pixels.data() + row * rowBytes, rowBytes);
-        }
+        // Half and float values pass through float unchanged, so the merged file holds the shards' bits.
+        const std::size_t nc = frame.channels.size();
+        const std::size_t row = nc * static_cast<std::size_t>(shard.window.width());
+        for (int y = 0; y < shard.window.height(); ++y)
+            std::memcpy(frame.pixels.data() + frame.window.index(shard.window.x0, shard.window.y0 + y) * nc,
+                        shard.pixels.data() + static_cast<std::size_t>(y) * row, row * sizeof(float));
     }
 
     writeAtomically(framePath, [&](const fs::path& temporary) {
-        auto out = OIIO::ImageOutput::create(temporary.string());
-        if (!out) throw Error(ExitCode::Output, "cannot create EXR writer: " + OIIO::geterror());
-        if (!out->open(temporary.string(), outSpec))
-            throw Error(ExitCode::Output, "cannot open " + temporary.string() + ": " + out->geterror());
-        if (!out->write_image(OIIO::TypeUnknown, frame.data()))
-            throw Error(ExitCode::Output, "cannot write " + framePath + ": " + out->geterror());
-        if (!out->close()) throw Error(ExitCode::Output, "cannot finish " + framePath + ": " + out->geterror());
+        if (const std::string why = imageModule().write(temporary.string(), frame); !why.empty())
+            throw Error(ExitCode::Output, "cannot write " + framePath + ": " + why);
     });
 }
 

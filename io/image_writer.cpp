@@ -4,10 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
 #include "clipblur/version.h"
 #include "io/shard.h"
+#include "renderer/image_module.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -24,12 +23,9 @@ void checkImage(const Image& image) {
                                               std::to_string(image.window.height()) + " data window");
 }
 
-void writeWith(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const void* pixels,
-               OIIO::TypeDesc pixel_type) {
-    auto out = OIIO::ImageOutput::create(file.string());
-    if (!out) throw Error(ExitCode::Output, "cannot create a writer for " + file.string() + ": " + OIIO::geterror());
-    if (!out->open(file.string(), spec) || !out->write_image(pixel_type, pixels) || !out->close())
-        throw Error(ExitCode::Output, "cannot write " + file.string() + ": " + out->geterror());
+void writeWith(const std::filesystem::path& file, const ImageFile& image) {
+    const std::string why = imageModule().write(file.string(), image);
+    if (!why.empty()) throw Error(ExitCode::Output, why);
 }
 
 // Colour-like channels may be half; every other channel holds measurements (depth, motion, IDs)
@@ -38,64 +34,63 @@ bool mayBeHalf(const std::string& name) {
     return name == "R" || name == "G" || name == "B" || name == "A" || name == "coverage";
 }
 
+void addInt(ImageFile& file, const std::string& name, int value) {
+    file.set(ImageAttribute::integers(name, kTypeInt, {value}));
+}
+
+void addFloat(ImageFile& file, const std::string& name, double value) {
+    file.set(ImageAttribute::floats(name, kTypeFloat, {static_cast<float>(value)}));
+}
+
+void addString(ImageFile& file, std::string_view name, const std::string& value) {
+    file.set(ImageAttribute::string(std::string(name), value));
+}
+
 // Standard OpenEXR attributes of a rendered frame (written through OpenImageIO's names).
-void addFrameHeader(OIIO::ImageSpec& spec, const FrameHeader& h) {
-    const int fps[2] = {h.fps_numerator, h.fps_denominator};
-    spec.attribute("framesPerSecond", OIIO::TypeRational, fps);
-    spec.attribute("ExposureTime", static_cast<float>(h.exposure_seconds));
-    spec.attribute("worldToCamera", OIIO::TypeMatrix44, h.world_to_camera.data());
-    spec.attribute("worldToNDC", OIIO::TypeMatrix44, h.world_to_ndc.data());
-    spec.attribute("clipblur:frame", h.frame);
-    spec.attribute("clipblur:shutterOpen", static_cast<float>(h.shutter_open));
-    spec.attribute("clipblur:shutterClose", static_cast<float>(h.shutter_close));
-    if (!h.shutter_curve.empty()) spec.attribute("clipblur:shutterCurve", h.shutter_curve);
+void addFrameHeader(ImageFile& file, const FrameHeader& h) {
+    file.set(ImageAttribute::integers("framesPerSecond", kTypeRational, {h.fps_numerator, h.fps_denominator}));
+    addFloat(file, "ExposureTime", h.exposure_seconds);
+    const auto matrix = [](const auto& m) { return std::vector<float>(m.begin(), m.end()); };
+    file.set(ImageAttribute::floats("worldToCamera", kTypeMatrix44, matrix(h.world_to_camera)));
+    file.set(ImageAttribute::floats("worldToNDC", kTypeMatrix44, matrix(h.world_to_ndc)));
+    addInt(file, "clipblur:frame", h.frame);
+    addFloat(file, "clipblur:shutterOpen", h.shutter_open);
+    addFloat(file, "clipblur:shutterClose", h.shutter_close);
+    if (!h.shutter_curve.empty()) addString(file, "clipblur:shutterCurve", h.shutter_curve);
 }
 
-void addProvenance(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {
-    spec.attribute("Software", std::string("clipblur ") + kVersion);
-    spec.attribute("clipblur:version", kVersion);
-    spec.attribute("clipblur:git", kGitHash);
-    spec.attribute("clipblur:method", metadata.method);
-    if (metadata.samples >= 0) spec.attribute("clipblur:samples", metadata.samples);
-    if (metadata.subframes >= 0) spec.attribute("clipblur:subframes", metadata.subframes);
+void addProvenance(ImageFile& file, const ImageMetadata& metadata) {
+    addString(file, "Software", std::string("clipblur ") + kVersion);
+    addString(file, "clipblur:version", kVersion);
+    addString(file, "clipblur:git", kGitHash);
+    addString(file, "clipblur:method", metadata.method);
+    if (metadata.samples >= 0) addInt(file, "clipblur:samples", metadata.samples);
+    if (metadata.subframes >= 0) addInt(file, "clipblur:subframes", metadata.subframes);
     // 64-bit seeds do not fit an int attribute; a decimal string keeps them exact.
-    spec.attribute("clipblur:seed", std::to_string(metadata.seed));
-    spec.attribute(kConfigHashKey, metadata.config_hash);
-    spec.attribute("clipblur:renderSeconds", static_cast<float>(metadata.render_seconds));
+    addString(file, "clipblur:seed", std::to_string(metadata.seed));
+    addString(file, kConfigHashKey, metadata.config_hash);
+    addFloat(file, "clipblur:renderSeconds", metadata.render_seconds);
     if (metadata.tile_count >= 1) {
-        spec.attribute(kTileIndexKey, metadata.tile_index);
-        spec.attribute(kTileCountKey, metadata.tile_count);
+        addInt(file, std::string(kTileIndexKey), metadata.tile_index);
+        addInt(file, std::string(kTileCountKey), metadata.tile_count);
     }
-    for (const auto& [name, value] : metadata.strings) spec.attribute(name, value);
+    for (const auto& [name, value] : metadata.strings) addString(file, name, value);
 }
 
-OIIO::ImageSpec exrSpec(const Image& image, const ExrFormat& format) {
-    const int nc = static_cast<int>(image.channels.size());
-    OIIO::ImageSpec spec(image.window.width(), image.window.height(), nc, OIIO::TypeDesc::FLOAT);
-    spec.x = image.window.x0;
-    spec.y = image.window.y0;
-    spec.full_x = 0;
-    spec.full_y = 0;
-    spec.full_width = image.width;
-    spec.full_height = image.height;
-    spec.channelnames.clear();
-    spec.channelformats.clear();
-    spec.alpha_channel = -1;
-    spec.z_channel = -1;
-    for (int c = 0; c < nc; ++c) {
-        const std::string& name = image.channels[static_cast<std::size_t>(c)].name;
-        spec.channelnames.push_back(name);
-        spec.channelformats.push_back(format.half && mayBeHalf(name) ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-        if (name == "A") spec.alpha_channel = c;
-        if (name == "Z") spec.z_channel = c;
+ImageFile exrFile(const Image& image, const ExrFormat& format) {
+    ImageFile file;
+    file.full_width = image.width;
+    file.full_height = image.height;
+    file.window = image.window;
+    for (const auto& c : image.channels) {
+        file.channels.push_back(c.name);
+        file.types.push_back(format.half && mayBeHalf(c.name) ? PixelType::Half : PixelType::Float);
     }
-    // The format of the colour channels, which readers report as the image's.
-    spec.format = format.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
-    spec.attribute("compression", compressionName(format.compression));
+    addString(file, "compression", compressionName(format.compression));
     // Linear Rec.709 / sRGB primaries with a D65 white point (ITU-R BT.709: red, green, blue, white xy).
-    const float chromaticities[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
-    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities);
-    return spec;
+    file.set(ImageAttribute::floats("chromaticities", floatArray(8),
+                                    {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f}));
+    return file;
 }
 
 }  // namespace
@@ -122,18 +117,18 @@ void writeExr(AtomicFileGroup& group, const std::filesystem::path& path, const I
     group.write(path, [&](const std::filesystem::path& temporary) {
         // Checked inside the atomic write so a bad image can never replace a good file.
         checkImage(image);
-        OIIO::ImageSpec spec = exrSpec(image, format);
-        addProvenance(spec, metadata);
-        if (metadata.frame) addFrameHeader(spec, *metadata.frame);
+        ImageFile file = exrFile(image, format);
+        addProvenance(file, metadata);
+        if (metadata.frame) addFrameHeader(file, *metadata.frame);
 
         const std::size_t nc = image.channels.size();
         const std::size_t n = image.window.area();
-        std::vector<float> interleaved(n * nc);
+        file.pixels.resize(n * nc);
         for (std::size_t c = 0; c < nc; ++c) {
             const auto& values = image.channels[c].values;
-            for (std::size_t i = 0; i < n; ++i) interleaved[i * nc + c] = values[i];
+            for (std::size_t i = 0; i < n; ++i) file.pixels[i * nc + c] = values[i];
         }
-        writeWith(temporary, spec, interleaved.data(), OIIO::TypeDesc::FLOAT);
+        writeWith(temporary, file);
     });
 }
 
@@ -159,7 +154,15 @@ void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, 
         for (const auto* c : rgb)
             if (!c) throw Error(ExitCode::Output, "PNG preview needs R, G and B channels");
         if (!alpha) throw Error(ExitCode::Output, "PNG preview needs an A channel");
-        std::vector<std::uint8_t> pixels(static_cast<std::size_t>(image.width) * image.height * 3, 0);
+        ImageFile file;
+        file.full_width = image.width;
+        file.full_height = image.height;
+        file.window = PixelBounds::sized(0, 0, image.width, image.height);
+        file.channels = {"R", "G", "B"};
+        file.types.assign(3, PixelType::UInt8);
+        // 8-bit codes as float k / 255, which the module converts back to k exactly.
+        std::vector<float>& pixels = file.pixels;
+        pixels.assign(static_cast<std::size_t>(image.width) * image.height * 3, 0.0f);
         for (int y = 0; y < image.window.height(); ++y) {
             const int fy = y + image.window.y0;
             if (fy < 0 || fy >= image.height) continue;
@@ -170,12 +173,12 @@ void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, 
                 const std::size_t dst = (static_cast<std::size_t>(fy) * image.width + fx) * 3;
                 const double uncovered = 1.0 - static_cast<double>(alpha->values[src]);
                 for (int c = 0; c < 3; ++c)
-                    pixels[dst + c] = encodeSrgb8(static_cast<float>(rgb[c]->values[src] + uncovered * background[c]));
+                    pixels[dst + c] =
+                        encodeSrgb8(static_cast<float>(rgb[c]->values[src] + uncovered * background[c])) / 255.0f;
             }
         }
-        OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-        spec.attribute("oiio:ColorSpace", "sRGB");
-        writeWith(temporary, spec, pixels.data(), OIIO::TypeDesc::UINT8);
+        addString(file, "oiio:ColorSpace", "sRGB");
+        writeWith(temporary, file);
     });
 }
 

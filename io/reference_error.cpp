@@ -4,41 +4,42 @@
 #include <array>
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
+#include "renderer/image_module.h"
 
 #include "scene/error.h"
 
 namespace clipblur {
 
 ReferenceImage readReference(const std::string& path, int width, int height) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.full_width != width || spec.full_height != height)
-        throw Error(ExitCode::Config, "reference image " + path + " is " + std::to_string(spec.full_width) + "x" +
-                                         std::to_string(spec.full_height) + ", the render is " +
+    ImageFile file;
+    if (const std::string why = imageModule().read(path, ImageRead::Header, file); !why.empty())
+        throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + why);
+    if (file.full_width != width || file.full_height != height)
+        throw Error(ExitCode::Config, "reference image " + path + " is " + std::to_string(file.full_width) + "x" +
+                                         std::to_string(file.full_height) + ", the render is " +
                                          std::to_string(width) + "x" + std::to_string(height));
     std::array<int, 3> channel{-1, -1, -1};
-    for (int c = 0; c < spec.nchannels; ++c) {
-        const std::string& name = spec.channelnames[static_cast<std::size_t>(c)];
+    const int nc = static_cast<int>(file.channels.size());
+    for (int c = 0; c < nc; ++c) {
+        const std::string& name = file.channels[static_cast<std::size_t>(c)];
         if (name == "R") channel[0] = c;
         if (name == "G") channel[1] = c;
         if (name == "B") channel[2] = c;
     }
     if (std::find(channel.begin(), channel.end(), -1) != channel.end())
         throw Error(ExitCode::Config, "reference image " + path + " lacks an R, G or B channel");
-    std::vector<float> all(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeFloat, all.data()))
-        throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + in->geterror());
+    if (const std::string why = imageModule().read(path, ImageRead::HeaderAndPixels, file); !why.empty())
+        throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + why);
     // Pixels outside the reference's data window are black (the EXR convention).
     ReferenceImage ref{width, height, std::vector<float>(static_cast<std::size_t>(width) * height * 3, 0.0f)};
-    for (int y = 0; y < spec.height; ++y) {
-        for (int x = 0; x < spec.width; ++x) {
-            const int fx = spec.x + x - spec.full_x, fy = spec.y + y - spec.full_y;
+    const PixelBounds w = file.window;
+    for (int y = 0; y < w.height(); ++y) {
+        for (int x = 0; x < w.width(); ++x) {
+            const int fx = w.x0 + x - file.full_x, fy = w.y0 + y - file.full_y;
             if (fx < 0 || fy < 0 || fx >= width || fy >= height) continue;
-            const std::size_t src = (static_cast<std::size_t>(y) * spec.width + x) * spec.nchannels;
+            const std::size_t src = (static_cast<std::size_t>(y) * w.width() + x) * nc;
             for (int k = 0; k < 3; ++k)
-                ref.rgb[(static_cast<std::size_t>(fy) * width + fx) * 3 + k] = all[src + channel[k]];
+                ref.rgb[(static_cast<std::size_t>(fy) * width + fx) * 3 + k] = file.pixels[src + channel[k]];
         }
     }
     return ref;

@@ -6,8 +6,7 @@
 #include <limits>
 #include <memory>
 
-#include <OpenImageIO/imageio.h>
-
+#include "renderer/image_module.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -88,32 +87,30 @@ ImageCheck checkImage(const fs::path& path, const ImageExpectation& expected) {
     const auto fail = [](std::string why) { return ImageCheck{false, std::move(why)}; };
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return fail("missing");
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) return fail("unreadable: " + OIIO::geterror());
-    if (std::string(in->format_name()) != "openexr") return fail("not an OpenEXR file");
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.full_x != 0 || spec.full_y != 0 || spec.full_width != expected.width ||
-        spec.full_height != expected.height)
-        return fail("display window " + std::to_string(spec.full_width) + "x" + std::to_string(spec.full_height) +
+    ImageFile file;
+    if (const std::string why = imageModule().read(path.string(), ImageRead::Header, file); !why.empty())
+        return fail("unreadable: " + why);
+    if (file.format != "openexr") return fail("not an OpenEXR file");
+    if (file.full_x != 0 || file.full_y != 0 || file.full_width != expected.width ||
+        file.full_height != expected.height)
+        return fail("display window " + std::to_string(file.full_width) + "x" + std::to_string(file.full_height) +
                     " differs from " + std::to_string(expected.width) + "x" + std::to_string(expected.height));
-    const PixelBounds window = PixelBounds::sized(spec.x, spec.y, spec.width, spec.height);
-    if (spec.depth != 1 || spec.z != 0 || !(window == expected.window))
-        return fail("data window " + toString(window) + " differs from " + toString(expected.window));
-    if (!expected.channels.empty() && spec.channelnames != expected.channels) {
+    if (!file.flat || !(file.window == expected.window))
+        return fail("data window " + toString(file.window) + " differs from " + toString(expected.window));
+    if (!expected.channels.empty() && file.channels != expected.channels) {
         std::string names;
-        for (const auto& n : spec.channelnames) names += (names.empty() ? "" : ",") + n;
+        for (const auto& n : file.channels) names += (names.empty() ? "" : ",") + n;
         return fail("channels " + names + " differ from the expected ones");
     }
     if (!expected.config_hash.empty()) {
-        const std::string hash = spec.get_string_attribute(kConfigHashKey);
+        const std::string hash = file.stringAttribute(kConfigHashKey);
         if (hash != expected.config_hash)
             return fail("config hash \"" + hash + "\" differs from \"" + expected.config_hash + "\"");
     }
     // Reading every pixel is the only reliable test for a file cut short: the header of a truncated EXR
     // is intact, its missing chunks only show when read.
-    std::vector<std::byte> pixels(spec.image_bytes(true));
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeUnknown, pixels.data()))
-        return fail("pixels unreadable: " + in->geterror());
+    if (const std::string why = imageModule().read(path.string(), ImageRead::HeaderAndPixels, file); !why.empty())
+        return fail("pixels unreadable: " + why);
     return {true, {}};
 }
 

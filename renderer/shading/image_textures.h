@@ -1,6 +1,6 @@
 #pragma once
 
-#include <memory>
+#include <cmath>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -16,10 +16,11 @@ struct TextureFootprint {
     glm::dvec2 dy{0.0};
 };
 
-// The process's one OpenImageIO TextureSystem (thread-safe), created on first use, so that scenes without
-// image textures never start it. Every image is read once, turned linear (integer texels are sRGB-encoded:
-// PNG and JPEG 8-bit, glTF's baseColorTexture; float texels are already linear) and MIP-mapped with a box
-// filter in linear light into a private temporary file, so that filtering averages light, not codes.
+// The process's one OpenImageIO TextureSystem (thread-safe), in the image module (renderer/image_module.h),
+// loaded on first use, so that scenes without image textures never start it. Every image is read once,
+// turned linear (integer texels are sRGB-encoded: PNG and JPEG 8-bit, glTF's baseColorTexture; float
+// texels are already linear) and MIP-mapped with a box filter in linear light into a private temporary
+// file, so that filtering averages light, not codes.
 class ImageTextures {
 public:
     static ImageTextures& shared();
@@ -30,24 +31,22 @@ public:
 
     // A prepared image, to look up without finding it by name each time; null when `file` was not prepared.
     struct Image;
-    const Image* find(const std::string& file) const;
+    virtual const Image* find(const std::string& file) const = 0;
 
     // Linear RGB of a prepared image at (s, t) (t down from the top row, both repeating), filtered over
     // `footprint`. Thread-safe.
-    glm::dvec3 lookup(const Image& image, const glm::dvec2& st, const TextureFootprint& footprint) const;
+    virtual glm::dvec3 lookup(const Image& image, const glm::dvec2& st, const TextureFootprint& footprint) const = 0;
 
-    ~ImageTextures();
-    ImageTextures(const ImageTextures&) = delete;
-    ImageTextures& operator=(const ImageTextures&) = delete;
-
-private:
-    ImageTextures();
-    void removePreparedFiles();
-    struct State;
-    std::unique_ptr<State> state_;
+protected:
+    // prepare's work: empty when `file` is (now) prepared, else why it cannot be, naming the file.
+    virtual std::string load(const std::string& file) = 0;
+    ImageTextures() = default;
+    ~ImageTextures() = default;  // the module's, never destroyed through this
 };
 
 // sRGB's decoding function (IEC 61966-2-1) for one channel value in [0, 1].
-double srgbToLinear(double code);
+inline double srgbToLinear(double code) {
+    return code <= 0.04045 ? code / 12.92 : std::pow((code + 0.055) / 1.055, 2.4);
+}
 
 }  // namespace clipblur

@@ -1,0 +1,63 @@
+#include "renderer/image_module.h"
+
+#include <dlfcn.h>
+
+#include <filesystem>
+#include <future>
+#include <mutex>
+#include <system_error>
+
+#include "scene/error.h"
+
+namespace clipblur {
+
+namespace {
+
+constexpr const char* kModuleName = "libclipblur_oiio.so";
+constexpr const char* kEntryPoint = "clipblur_image_module";
+
+struct Loaded {
+    const ImageModule* module = nullptr;
+    std::string error;
+};
+
+Loaded load() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / kModuleName;
+    const std::string path = !ec && fs::is_regular_file(beside, ec) ? beside.string() : std::string(CLIPBLUR_OIIO_MODULE);
+    // Never closed: the module's texture system and OpenImageIO's own state live until the process ends.
+    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) return {nullptr, "cannot load the image I/O module " + path + ": " + ::dlerror()};
+    using Entry = const ImageModule* (*)();
+    auto entry = reinterpret_cast<Entry>(::dlsym(handle, kEntryPoint));
+    if (!entry) return {nullptr, "image I/O module " + path + " lacks " + kEntryPoint};
+    return {entry(), {}};
+}
+
+struct Loader {
+    std::once_flag started;
+    std::shared_future<Loaded> result;
+
+    const std::shared_future<Loaded>& start() {
+        std::call_once(started, [this] { result = std::async(std::launch::async, load).share(); });
+        return result;
+    }
+};
+
+Loader& loader() {
+    static Loader instance;
+    return instance;
+}
+
+}  // namespace
+
+const ImageModule& imageModule() {
+    const Loaded& loaded = loader().start().get();
+    if (!loaded.module) throw Error(ExitCode::Output, loaded.error);
+    return *loaded.module;
+}
+
+void preloadImageModule() { loader().start(); }
+
+}  // namespace clipblur

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <string>
+
+#include "renderer/image_file.h"
+
+namespace clipblur {
+
+class ImageTextures;
+
+// What libclipblur_oiio.so, the one place OpenImageIO is linked, provides. Debian's OpenImageIO pulls in
+// some 250 shared libraries (FFmpeg, OpenCV, GDAL, ...) whose loading and relocation cost 0.4 s before
+// main(); so the executable does not link it, and only a process that reads or writes an image loads
+// the module, on first use. Built by the same compiler from the same headers as the executable.
+struct ImageModule {
+    // Reads `file`'s first subimage into `out`; empty on success, else why not.
+    std::string (*read)(const std::string& file, ImageRead what, ImageFile& out);
+    // Writes `image` to `file`, the format following its extension; empty on success, else why not.
+    std::string (*write)(const std::string& file, const ImageFile& image);
+    // The process's one texture system.
+    ImageTextures& (*textures)();
+};
+
+// Loads the module once (thread-safe): from beside the executable, else from where the build put it.
+// Throws Error(ExitCode::Output) naming the file and the loader's reason when it cannot be loaded.
+const ImageModule& imageModule();
+
+// Starts loading the module on a background thread, for a command that will write images: its load
+// then overlaps the scene's loading and rendering. imageModule() waits for it.
+void preloadImageModule();
+
+}  // namespace clipblur
