@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
-"""Writes the shipped shot's glTF 2.0 street (configs/shot/): street.gltf, street.bin and its PNG textures.
+"""Writes the shipped shot's glTF 2.0 street (configs/shot/): street.gltf, street.bin, its PNG textures and
+street_plain.gltf.
 
 A road between two sidewalks and a row of building facades, three cars passing at different speeds and
 directions (each car node translates; its four wheel nodes are children that spin, rolling without
 slipping), a skinned walker (eight joints: hips, knees, shoulders, spine) walking along the near sidewalk,
 and a camera node that pans and dollies (perspective yfov, 16:9). Wheels and the walker carry NORMAL
 (smooth shading); road, sidewalks, facades and wheel caps carry TEXCOORD_0 and a baseColorTexture.
-Animation spans glTF seconds 0 .. 2 (48 frames at 24 fps).
+Animation spans glTF seconds 0 .. 2 (48 frames at 24 fps). street_plain.gltf is the same street without
+textures and normals (for the plain Embree loop, which shades neither).
 
 Standard library only; the output is the same bytes on every run (`--check` compares against the
 committed files instead of writing, exit 1 on a difference).
@@ -69,34 +71,35 @@ def paving(x, y):
 
 
 def facade(x, y):
-    """64x64: one bay (2 m wide, one 3 m storey): light wall, a window with a frame and a sill."""
-    g = 200 + 30 * grain(x // 2, y // 2, 3)
-    if 16 <= x < 48 and 12 <= y < 44:
-        if 18 <= x < 46 and 14 <= y < 42 and x != 32:
-            shade = 0.25 + 0.2 * (y - 14) / 28
-            return (clamp8(60 * shade * 2), clamp8(90 * shade * 2), clamp8(140 * shade * 2))
+    """32x32: one bay (2 m wide, one 3 m storey): light wall, a window with a frame and a sill. Coarse on
+    purpose: at the shot's 640x360 a texel covers about 1.7 pixels, so textures are magnified."""
+    g = 200 + 30 * grain(x, y, 3)
+    if 8 <= x < 24 and 6 <= y < 22:
+        if 9 <= x < 23 and 7 <= y < 21 and x != 16:
+            shade = 0.5 + 0.4 * (y - 7) / 14
+            return (clamp8(60 * shade), clamp8(90 * shade), clamp8(140 * shade))
         return (235, 235, 230)
-    if 14 <= x < 50 and 44 <= y < 47:
+    if 7 <= x < 25 and y == 22:
         return (120, 110, 100)
     return (clamp8(g), clamp8(g * 0.9), clamp8(g * 0.8))
 
 
 def wheel(x, y):
-    """32x32: a disc (the caps' UVs) of tyre, rim and five spokes; the tread reads the corner (tyre)."""
-    dx, dy = (x + 0.5) / 16.0 - 1.0, (y + 0.5) / 16.0 - 1.0
+    """16x16: a disc (the caps' UVs) of tyre, rim and five spokes; the tread reads the corner (tyre)."""
+    dx, dy = (x + 0.5) / 8.0 - 1.0, (y + 0.5) / 8.0 - 1.0
     r = math.hypot(dx, dy)
-    if r > 0.72 or r < 0.0:
+    if r > 0.75:
         return (25, 25, 28)
-    if r > 0.62 or r < 0.16:
+    if r > 0.6 or r < 0.2:
         return (200, 200, 205)
     a = math.atan2(dy, dx) % (2 * math.pi / 5)
-    if abs(a - math.pi / 5) > 0.8:
+    if abs(a - math.pi / 5) > 0.75:
         return (200, 200, 205)
     return (45, 45, 50)
 
 
-TEXTURES = {"asphalt.png": (64, 64, asphalt), "paving.png": (32, 32, paving), "facade.png": (64, 64, facade),
-            "wheel.png": (32, 32, wheel)}
+TEXTURES = {"asphalt.png": (64, 64, asphalt), "paving.png": (32, 32, paving), "facade.png": (32, 32, facade),
+            "wheel.png": (16, 16, wheel)}
 
 
 # ---- binary buffer and accessors ----
@@ -424,7 +427,7 @@ def build():
              (0.7, 0.8, 0.7)]
     for i, x0 in enumerate(range(-30, 30, 10)):
         height = (9.0, 12.0, 15.0, 9.0, 12.0, 9.0)[i]
-        mesh = g.mesh(f"building_{i}", geometry(g, box((x0 + 0.2, 0.0, -16.0), (x0 + 9.8, height, -7.0), tile=(2.0, 3.0))),
+        mesh = g.mesh(f"building_{i}", geometry(g, box((x0, 0.0, -16.0), (x0 + 10.0, height, -7.0), tile=(2.0, 3.0))),
                       material(f"facade_{i}", tints[i], "facade.png"))
         roots.append(g.add("nodes", {"name": f"building_{i}", "mesh": mesh}))
 
@@ -441,9 +444,27 @@ def build():
     return g
 
 
+def plain(doc):
+    """The same street without image textures and vertex normals, over the same street.bin: what the
+    plain Embree loop (scripts/bench/peers.py) shades the same way as clipblur, for the equal-error
+    comparison. Its unused accessors are only an info in the validator's report."""
+    doc = json.loads(json.dumps(doc))
+    for key in ("images", "samplers", "textures"):
+        del doc[key]
+    for material in doc["materials"]:
+        material["pbrMetallicRoughness"].pop("baseColorTexture", None)
+    for mesh in doc["meshes"]:
+        for primitive in mesh["primitives"]:
+            primitive["attributes"].pop("NORMAL", None)
+            primitive["attributes"].pop("TEXCOORD_0", None)
+    doc["asset"]["generator"] += " (plain: no textures, no normals)"
+    return doc
+
+
 def serialise(g):
     g.doc["buffers"] = [{"uri": "street.bin", "byteLength": len(g.blob)}]
-    files = {"street.gltf": (json.dumps(g.doc, indent=1) + "\n").encode(), "street.bin": bytes(g.blob)}
+    files = {"street.gltf": (json.dumps(g.doc, indent=1) + "\n").encode(), "street.bin": bytes(g.blob),
+             "street_plain.gltf": (json.dumps(plain(g.doc), indent=1) + "\n").encode()}
     for name, (w, h, pixel) in TEXTURES.items():
         files[name] = png(w, h, pixel)
     return files
