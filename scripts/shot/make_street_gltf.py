@@ -22,6 +22,7 @@ import math
 import struct
 import sys
 import zlib
+from collections import namedtuple
 from pathlib import Path
 
 OUT = Path(__file__).resolve().parents[2] / "configs" / "shot"
@@ -349,22 +350,27 @@ def add_camera(g):
     return node
 
 
-def add_car(g, name, mesh, wheel, start_x, speed, lane_z, heading_degrees):
-    """A car node moving along world x at `speed` (m/s, signed), facing its motion, with four spinning
-    wheel children rolling without slipping (radius 0.33 m)."""
+# A car: `speed` in m/s along world x (signed), `heading` in degrees about y (facing its motion).
+Car = namedtuple("Car", "name color start_x speed lane_z heading")
+
+
+def add_car(g, car, mesh, wheel):
+    """A car node moving along world x, with four spinning wheel children rolling without slipping
+    (radius 0.33 m)."""
     wheels = []
-    car = g.add("nodes", {"name": name, "mesh": mesh, "translation": [start_x, 0.0, lane_z],
-                          "rotation": list(quat_axis((0, 1, 0), heading_degrees)), "children": wheels})
+    name, speed = car.name, car.speed
+    node = g.add("nodes", {"name": name, "mesh": mesh, "translation": [car.start_x, 0.0, car.lane_z],
+                           "rotation": list(quat_axis((0, 1, 0), car.heading)), "children": wheels})
     times = key_times(1.0)
-    g.animate(car, "translation", times, [(start_x + speed * t, 0.0, lane_z) for t in times])
+    g.animate(node, "translation", times, [(car.start_x + speed * t, 0.0, car.lane_z) for t in times])
     # In the car's frame the car moves along +x; a wheel rolling that way turns about -z.
     omega = math.degrees(abs(speed) / 0.33)
     spin_times = key_times(1.0 / 24.0)  # at most 9 m/s: 65 degrees between keys
     for wx, wz, tag in ((1.35, 0.9, "fl"), (-1.35, 0.9, "rl"), (1.35, -0.9, "fr"), (-1.35, -0.9, "rr")):
-        node = g.add("nodes", {"name": f"{name}_wheel_{tag}", "mesh": wheel, "translation": [wx, 0.33, wz]})
-        wheels.append(node)
-        g.animate(node, "rotation", spin_times, [quat_axis((0, 0, 1), -omega * t) for t in spin_times])
-    return car
+        child = g.add("nodes", {"name": f"{name}_wheel_{tag}", "mesh": wheel, "translation": [wx, 0.33, wz]})
+        wheels.append(child)
+        g.animate(child, "rotation", spin_times, [quat_axis((0, 0, 1), -omega * t) for t in spin_times])
+    return node
 
 
 def add_walker(g, material):
@@ -433,12 +439,11 @@ def build():
 
     body = geometry(g, car_body())
     wheel = g.mesh("wheel", geometry(g, wheel_mesh(0.33, 0.24, 16)), material("wheel", (1.0, 1.0, 1.0), "wheel.png"))
-    cars = [("car_red", (0.75, 0.08, 0.05), -14.0, 9.0, 1.5, 0.0),
-            ("car_blue", (0.08, 0.2, 0.7), 12.0, -6.0, -1.5, 180.0),
-            ("car_yellow", (0.9, 0.75, 0.1), 2.0, -3.5, -1.5, 180.0)]
-    for name, color, x0, speed, lane, heading in cars:
-        mesh = g.mesh(name, body, material(name, color))
-        roots.append(add_car(g, name, mesh, wheel, x0, speed, lane, heading))
+    cars = [Car("car_red", (0.75, 0.08, 0.05), -14.0, 9.0, 1.5, 0.0),
+            Car("car_blue", (0.08, 0.2, 0.7), 12.0, -6.0, -1.5, 180.0),
+            Car("car_yellow", (0.9, 0.75, 0.1), 2.0, -3.5, -1.5, 180.0)]
+    for car in cars:
+        roots.append(add_car(g, car, g.mesh(car.name, body, material(car.name, car.color)), wheel))
     roots.extend(add_walker(g, material("walker", (0.2, 0.45, 0.6), double_sided=True)))
     roots.append(add_camera(g))
     return g
