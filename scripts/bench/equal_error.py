@@ -146,11 +146,12 @@ def row(scene, role, method, param, seed, threads, stats, args, image, error="",
 
 def measure_scene(clipblur, scene, args, out, log=print):
     """All renders of one scene; returns (rows, result) with result the figures of the summary."""
-    config = benchlib.REPO / "configs" / "bench" / f"{scene}.yaml"
+    # A scene is a name under configs/bench, or a job's path from the repository's root (configs/shot.yaml).
+    config = benchlib.REPO / scene if scene.endswith(".yaml") else benchlib.REPO / "configs" / "bench" / f"{scene}.yaml"
     if not config.is_file():
         raise benchlib.BenchError(f"no bench scene {config}")
     base = benchlib.base_overrides(args.width, args.height)
-    folder = out / "renders" / scene
+    folder = out / "renders" / (Path(scene).stem if scene.endswith(".yaml") else scene)
     rows = []
 
     images = []
@@ -320,7 +321,8 @@ def summarise(results, rows):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--scenes", default=",".join(DEFAULT_SCENES), help="comma-separated scene names from configs/bench")
+    ap.add_argument("--scenes", default=",".join(DEFAULT_SCENES), help="comma-separated scene names from configs/bench, or job paths "
+                    "ending in .yaml from the repository's root")
     ap.add_argument("--width", type=int, default=1280)
     ap.add_argument("--height", type=int, default=720)
     ap.add_argument("--seeds", default=",".join(map(str, DEFAULT_SEEDS)), help="the two stochastic seeds, s1,s2")
