@@ -7,7 +7,6 @@
 #include <cmath>
 #include <deque>
 #include <fstream>
-#include <functional>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -539,6 +538,7 @@ private:
         return p.material < 0 ? static_cast<int>(default_material_) : p.material;
     }
     SkinBinding skinBinding(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
+    Object skinnedObject(Object object, std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
     MorphBinding morphBinding(const PrimitiveGeometry& g, const Track* weights) const;
     std::vector<const AnimatedNode*> chainTo(std::size_t node) const;
     void checkJumps(const KeyPlan& plan, const std::string& where) const;
@@ -628,25 +628,7 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
             if (!g.normals.empty()) object.mesh.corner_normals.push_back(g.normals[v]);
         }
     if (n.skin >= 0) {
-        // A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints,
-        // followed exactly; the mesh keeps the bind pose with the rest weights.
-        object.mesh.positions = g.positions;
-        const std::vector<double> rest = restWeights(node, g.targets.size());
-        for (std::size_t t = 0; t < g.targets.size(); ++t)
-            for (std::size_t v = 0; v < g.positions.size(); ++v) object.mesh.positions[v] += rest[t] * g.targets[t][v];
-        auto motion = std::make_shared<ExactMotion>(store_, ChainMotion{});
-        SkinBinding skin = skinBinding(node, mesh.primitives[prim], g);
-        const auto morph = weight_tracks_.find(node);
-        if (morph != weight_tracks_.end()) motion->setMorph(morphBinding(g, morph->second));
-        std::vector<const Track*> tracks;
-        for (const ChainMotion& joint : skin.joints)
-            for (const AnimatedNode* a : joint.chain) tracks.insert(tracks.end(), {a->translation, a->rotation, a->scale});
-        if (morph != weight_tracks_.end()) tracks.push_back(morph->second);
-        tracks.erase(std::remove(tracks.begin(), tracks.end(), nullptr), tracks.end());
-        checkJumps(planTimes(tracks), where + "/skin");
-        motion->setSkin(std::move(skin));
-        object.motion = std::move(motion);
-        out_.objects.push_back(std::move(object));
+        out_.objects.push_back(skinnedObject(std::move(object), node, mesh.primitives[prim], g));
         return;
     }
     const SplitChain s = split(chain);
@@ -674,6 +656,28 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
         object.motion = std::move(motion);
     }
     out_.objects.push_back(std::move(object));
+}
+
+// A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints, followed
+// exactly; the mesh keeps the bind pose with the rest weights.
+Object SceneBuilder::skinnedObject(Object object, std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g) {
+    object.mesh.positions = g.positions;
+    const std::vector<double> rest = restWeights(node, g.targets.size());
+    for (std::size_t t = 0; t < g.targets.size(); ++t)
+        for (std::size_t v = 0; v < g.positions.size(); ++v) object.mesh.positions[v] += rest[t] * g.targets[t][v];
+    auto motion = std::make_shared<ExactMotion>(store_, ChainMotion{});
+    SkinBinding skin = skinBinding(node, p, g);
+    const auto morph = weight_tracks_.find(node);
+    if (morph != weight_tracks_.end()) motion->setMorph(morphBinding(g, morph->second));
+    std::vector<const Track*> tracks;
+    for (const ChainMotion& joint : skin.joints)
+        for (const AnimatedNode* a : joint.chain) tracks.insert(tracks.end(), {a->translation, a->rotation, a->scale});
+    if (morph != weight_tracks_.end()) tracks.push_back(morph->second);
+    tracks.erase(std::remove(tracks.begin(), tracks.end(), nullptr), tracks.end());
+    checkJumps(planTimes(tracks), pointer("nodes", node) + "/skin");
+    motion->setSkin(std::move(skin));
+    object.motion = std::move(motion);
+    return object;
 }
 
 // Keys where they are exact and within the key limits (a STEP hold per key at most counted); an exact

@@ -356,7 +356,8 @@ TEST(GltfLoader, ShearedChainIsFollowedExactlyWithItsRatesAndNormals) {
     };
     const std::vector<double> times = seededTimes(0, 24, 2000, 19);
     // 1e-12 of a path about 10 long: the same products in another order.
-    EXPECT_LT(worstDeviation(o, truth, times), 1e-12);
+    const double worst = worstDeviation(o, truth, times);
+    EXPECT_LT(worst, 1e-12);
     // The matrix does shear: its first two columns are not orthogonal at 6 frames.
     const glm::dmat4 at6 = truth(6.0);
     EXPECT_GT(std::abs(glm::dot(glm::normalize(glm::dvec3(at6[0])), glm::normalize(glm::dvec3(at6[1])))), 0.1);
@@ -383,7 +384,8 @@ TEST(GltfLoader, ShearedChainIsFollowedExactlyWithItsRatesAndNormals) {
     // a missing term of the product rule.
     EXPECT_LT(worst_rate, 1e-7);
     EXPECT_LT(worst_normal, 1e-12);
-    std::cout << "sheared chain: rate deviation " << worst_rate << ", normal " << worst_normal << "\n";
+    std::cout << "sheared chain: deviation " << worst << ", rate deviation " << worst_rate << ", normal " << worst_normal
+              << "\n";
 }
 
 // CUBICSPLINE morph weights: positions are base + sum w_i(t) d_i with w from the Hermite spline.
@@ -414,6 +416,29 @@ TEST(GltfLoader, CubicSplineMorphWeightsAreFollowedExactly) {
                           glm::length(evalVertex(o, 1, t) - glm::dvec3(1 + w1, 0, 0))});
     }
     EXPECT_LT(worst, 1e-12);  // rounding only
+    std::cout << "CUBICSPLINE morph: exact motion, measured deviation " << worst << "\n";
+}
+
+// Stillness and breakpoints of an exact motion come from its tracks: a CUBICSPLINE track that holds one
+// value with zero tangents between its last two keys is still there, and moves where the spline does.
+TEST(GltfLoader, ExactMotionIsStillWhereItsTracksHold) {
+    GltfWriter w;
+    const int mesh = addTetraMesh(w);
+    const int node = addNode(w, {{"name", "settle"}, {"mesh", mesh}});
+    setScene(w, {node});
+    // Keys at 0, 1, 2 s: from the origin to (1, 0, 0), then held there (zero tangents into and out of it).
+    const std::vector<float> tr = {0, 0, 0, 0, 0, 0, 1, 0, 0, /**/ 0, 0, 0, 1, 0, 0, 0, 0, 0, /**/ 0, 0, 0, 1, 0, 0, 0, 0, 0};
+    animate(w, node, "translation", "CUBICSPLINE", {0, 1, 2}, tr);
+    const Object o = loadValid(w, "settle").objects.at(0);
+    ASSERT_TRUE(o.motion);
+    EXPECT_FALSE(isStatic(o, 5, 10));
+    EXPECT_FALSE(isStatic(o, 20, 30));  // reaches into the moving first interval
+    EXPECT_TRUE(isStatic(o, 24, 40));
+    EXPECT_TRUE(isStatic(o, 50, 60));  // held after the last key
+    EXPECT_TRUE(isStatic(o, -10, 0));  // held before the first
+    std::vector<double> breaks;
+    addMotionKeyTimes(o, 0, 48, breaks);
+    EXPECT_EQ(breaks, std::vector<double>{24.0});  // strictly inside (0, 48)
 }
 
 TEST(GltfLoader, CameraAnimatedLikeSpinPanGivesTheYamlCameraPoses) {
