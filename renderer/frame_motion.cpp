@@ -5,6 +5,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "scene/exact_motion.h"
+
 namespace clipblur {
 
 namespace {
@@ -24,6 +26,15 @@ bool cameraKeeps(const Camera& camera, const CameraPath& path, double a, double 
     for (const CameraKey& key : camera.keys)
         if (key.time > a && key.time < b && !same(open, path.at(key.time))) return false;
     return true;
+}
+
+// The rotation of a general (possibly sheared) matrix, its columns made orthonormal from the first: what
+// a turn count needs, not a decomposition.
+glm::dquat orientationOf(const glm::dmat4& m) {
+    const glm::dvec3 x = glm::normalize(glm::dvec3(m[0]));
+    const glm::dvec3 c1(m[1]);
+    const glm::dvec3 y = glm::normalize(c1 - glm::dot(c1, x) * x);
+    return glm::quat_cast(glm::dmat3(x, y, glm::cross(x, y)));
 }
 
 }  // namespace
@@ -83,7 +94,12 @@ double FrameMotion::largestTurn() const {
     };
     double largest = turn([&](double t) { return glm::quat_cast(camera(t).basis()); });
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
-        if (scene_.objects[o].transform.size() < 2) continue;
+        const Object& object = scene_.objects[o];
+        if (object.motion && !object.motion->skinned()) {
+            largest = std::max(largest, turn([&](double t) { return orientationOf(worldMatrix(object, t)); }));
+            continue;
+        }
+        if (object.transform.size() < 2) continue;
         largest = std::max(largest, turn([&](double t) { return transform(o, t).rotate; }));
     }
     return largest;

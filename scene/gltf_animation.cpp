@@ -32,7 +32,7 @@ glm::dmat4 trsMatrix(const RigidTransform& trs) {
            glm::scale(glm::dmat4(1.0), trs.scale);
 }
 
-void Track::eval(double t, double* out) const {
+void Track::eval(double t, double* out, double* rate) const {
     const std::size_t stride = interpolation == Interpolation::CubicSpline ? 3 * width : width;
     const std::size_t value_at = interpolation == Interpolation::CubicSpline ? width : 0;
     const auto value = [&](std::size_t k) { return values.data() + k * stride + value_at; };
@@ -44,14 +44,17 @@ void Track::eval(double t, double* out) const {
         k = keyBefore(times, t);
         u = (t - times[k]) / (times[k + 1] - times[k]);
     }
-    if (u == 0.0 || interpolation == Interpolation::Step) {
+    // Moving: inside the keys (a key time itself counts, for its right derivative) and not STEP.
+    const bool moving = rate && interpolation != Interpolation::Step && t >= times.front() && t < times.back();
+    if (rate) std::fill(rate, rate + width, 0.0);
+    if (!moving && (u == 0.0 || interpolation == Interpolation::Step)) {
         std::copy(value(k), value(k) + width, out);
         if (rotation) writeQuat(glm::normalize(quatAt(out)), out);
         return;
     }
+    const double dt = times[k + 1] - times[k];
     if (interpolation == Interpolation::CubicSpline) {
         // glTF 2.0 Appendix C: the cubic Hermite spline, tangents scaled by the key interval.
-        const double dt = times[k + 1] - times[k];
         const double u2 = u * u;
         const double u3 = u2 * u;
         const double h00 = 2 * u3 - 3 * u2 + 1;
@@ -60,44 +63,122 @@ void Track::eval(double t, double* out) const {
         const double h11 = dt * (u3 - u2);
         const double* out_tangent = values.data() + k * stride + 2 * width;
         const double* in_tangent = values.data() + (k + 1) * stride;
-        for (std::size_t i = 0; i < width; ++i)
-            out[i] = h00 * value(k)[i] + h10 * out_tangent[i] + h01 * value(k + 1)[i] + h11 * in_tangent[i];
-        if (rotation) writeQuat(glm::normalize(quatAt(out)), out);
+        double n[4] = {0, 0, 0, 0};
+        for (std::size_t i = 0; i < width; ++i) {
+            n[i % 4] = out[i] = h00 * value(k)[i] + h10 * out_tangent[i] + h01 * value(k + 1)[i] + h11 * in_tangent[i];
+            if (rate)
+                rate[i] = (6 * u2 - 6 * u) * (value(k)[i] - value(k + 1)[i]) / dt + (3 * u2 - 4 * u + 1) * out_tangent[i] +
+                          (3 * u2 - 2 * u) * in_tangent[i];
+        }
+        if (!rotation) return;
+        // q = n / |n|: q' = (n' - q (q . n')) / |n|.
+        const glm::dquat raw = quatAt(n);
+        const glm::dquat q = glm::normalize(raw);
+        writeQuat(q, out);
+        if (rate) {
+            const glm::dquat d = quatAt(rate);
+            writeQuat((d - q * glm::dot(q, d)) / glm::length(raw), rate);
+        }
         return;
     }
     if (rotation) {
         const glm::dquat a = glm::normalize(quatAt(value(k)));
         glm::dquat b = glm::normalize(quatAt(value(k + 1)));
         if (glm::dot(a, b) < 0.0) b = -b;  // glTF's slerp takes the shortest arc, as the renderer's does
-        writeQuat(glm::normalize(glm::slerp(a, b, u)), out);
+        const glm::dquat q = u == 0.0 ? a : glm::normalize(glm::slerp(a, b, u));
+        writeQuat(q, out);
+        // slerp(a, b, u) = (b a^-1)^u a turns about the world axis of b a^-1 at a constant rate:
+        // q' = (0, omega) q / 2.
+        if (rate) {
+            const glm::dquat relative = b * glm::conjugate(a);
+            const glm::dvec3 v(relative.x, relative.y, relative.z);
+            const double s = glm::length(v);
+            const glm::dvec3 omega = s > 0.0 ? v * (2.0 * std::atan2(s, relative.w) / s / dt) : glm::dvec3(0.0);
+            writeQuat(0.5 * (glm::dquat(0.0, omega.x, omega.y, omega.z) * q), rate);
+        }
         return;
     }
-    for (std::size_t i = 0; i < width; ++i) out[i] = value(k)[i] + u * (value(k + 1)[i] - value(k)[i]);
+    for (std::size_t i = 0; i < width; ++i) {
+        out[i] = value(k)[i] + u * (value(k + 1)[i] - value(k)[i]);
+        if (rate) rate[i] = (value(k + 1)[i] - value(k)[i]) / dt;
+    }
 }
 
-glm::dmat4 AnimatedNode::local(double t) const {
+bool Track::constantOver(double t0, double t1) const {
+    if (times.size() < 2 || t1 <= times.front() || t0 >= times.back()) return true;
+    const auto at_or_before = [&](double t) { return t <= times.front() ? 0 : keyBefore(times, std::min(t, times.back())); };
+    const std::size_t first = at_or_before(t0);
+    // STEP takes the value of the key at or before each time; the others also reach toward the next key.
+    std::size_t last = at_or_before(t1);
+    if (interpolation != Interpolation::Step && times[last] < t1) ++last;
+    const std::size_t stride = interpolation == Interpolation::CubicSpline ? 3 * width : width;
+    const std::size_t value_at = interpolation == Interpolation::CubicSpline ? width : 0;
+    for (std::size_t k = first; k <= last; ++k)
+        for (std::size_t i = 0; i < width; ++i) {
+            if (values[k * stride + value_at + i] != values[first * stride + value_at + i]) return false;
+            if (interpolation != Interpolation::CubicSpline) continue;
+            // The tangents that shape [first, last]: out of every key but the last, into every key but the first.
+            if (k < last && values[k * stride + 2 * width + i] != 0.0) return false;
+            if (k > first && values[k * stride + i] != 0.0) return false;
+        }
+    return true;
+}
+
+glm::dmat4 AnimatedNode::local(double t) const { return local(t, nullptr); }
+
+glm::dmat4 AnimatedNode::local(double t, glm::dmat4* rate) const {
+    if (rate) *rate = glm::dmat4(0.0);
     if (has_matrix) return matrix;
     RigidTransform trs = rest;
     double v[4];
+    double r[4] = {0, 0, 0, 0};
+    double* want = rate ? r : nullptr;
+    glm::dvec3 translate_rate(0.0), scale_rate(0.0);
+    glm::dquat rotate_rate(0.0, 0.0, 0.0, 0.0);
     if (translation) {
-        translation->eval(t, v);
+        translation->eval(t, v, want);
         trs.translate = {v[0], v[1], v[2]};
+        translate_rate = {r[0], r[1], r[2]};
     }
     if (rotation) {
-        rotation->eval(t, v);
+        rotation->eval(t, v, want);
         trs.rotate = quatAt(v);
+        rotate_rate = quatAt(r);
     }
     if (scale) {
-        scale->eval(t, v);
+        scale->eval(t, v, want);
         trs.scale = {v[0], v[1], v[2]};
+        scale_rate = {r[0], r[1], r[2]};
+    }
+    if (rate) {
+        // d/dt T R S: the translation's rate in the last column, R' S + R S' in the linear part, where
+        // R' = [omega]x R with omega = 2 vec(q' q*) for a unit q.
+        const glm::dquat w = 2.0 * (rotate_rate * glm::conjugate(trs.rotate));
+        const glm::dmat3 cross(glm::dvec3(0.0, w.z, -w.y), glm::dvec3(-w.z, 0.0, w.x), glm::dvec3(w.y, -w.x, 0.0));
+        const glm::dmat3 r3 = glm::mat3_cast(trs.rotate);
+        const glm::dmat3 linear = cross * r3 * glm::dmat3(glm::scale(glm::dmat4(1.0), trs.scale)) +
+                                  r3 * glm::dmat3(glm::scale(glm::dmat4(1.0), scale_rate));
+        *rate = glm::dmat4(linear);
+        (*rate)[3] = glm::dvec4(translate_rate, 0.0);
     }
     return trsMatrix(trs);
 }
 
-glm::dmat4 ChainMotion::world(double t) const {
+glm::dmat4 ChainMotion::product(double t, glm::dmat4* rate) const {
     glm::dmat4 m(1.0);
-    for (const AnimatedNode* node : chain) m = m * node->local(t);
-    m = m * tail;
+    glm::dmat4 d(0.0);
+    for (const AnimatedNode* node : chain) {
+        glm::dmat4 local_rate;
+        const glm::dmat4 l = node->local(t, rate ? &local_rate : nullptr);
+        if (rate) d = d * l + m * local_rate;
+        m = m * l;
+    }
+    if (rate) *rate = d * tail;
+    return m * tail;
+}
+
+glm::dmat4 ChainMotion::world(double t) const {
+    const glm::dmat4 m = product(t, nullptr);
     if (!rigid) return m;
     const glm::dvec3 back = glm::normalize(glm::dvec3(m[2]));
     const glm::dvec3 y = glm::dvec3(m[1]);

@@ -25,8 +25,12 @@ struct Track {
     std::vector<double> times;   // strictly increasing
     std::vector<double> values;
 
-    // The value at t (held outside the keys), `width` numbers written to out.
-    void eval(double t, double* out) const;
+    // The value at t (held outside the keys), `width` numbers written to out; with `rate`, also its time
+    // derivative per frame (the right derivative at a key time, zero where held or STEP). A rotation's
+    // rate is d/dt of the unit quaternion written to out.
+    void eval(double t, double* out, double* rate = nullptr) const;
+    // True when the value is the same at every time of [t0, t1] (judged from the keys, conservatively).
+    bool constantOver(double t0, double t1) const;
 };
 
 // A node's place in the hierarchy: its rest pose or matrix and the tracks that animate it.
@@ -40,6 +44,8 @@ struct AnimatedNode {
 
     bool animated() const { return translation || rotation || scale; }
     glm::dmat4 local(double t) const;
+    // local(t) and, when `rate` is given, its time derivative (per frame).
+    glm::dmat4 local(double t, glm::dmat4* rate) const;
 };
 
 // Object-to-world motion of a chain of nodes, root first, ending at the deepest animated node (the static
@@ -51,6 +57,9 @@ struct ChainMotion {
     glm::dmat4 tail{1.0};
     bool rigid = false;
     glm::dmat4 world(double t) const;
+    // The product of the chain's local matrices and tail (not made rigid) and its time derivative by the
+    // product rule; `rate` may be null.
+    glm::dmat4 product(double t, glm::dmat4* rate) const;
 };
 
 // Throws std::domain_error when m has shear (non-uniform scale under a rotation) or is singular.

@@ -7,13 +7,13 @@
 #include <cmath>
 #include <deque>
 #include <fstream>
-#include <functional>
 #include <iterator>
 #include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
 
+#include "scene/exact_motion.h"
 #include "scene/gltf_animation.h"
 #include "scene/scene_validation.h"
 #include "scene/tiny_gltf_config.h"
@@ -31,14 +31,9 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
     return true;
 }
 
-// The stated bound of resampled motion, relative to the object's size: a hundredth of a pixel for an
-// object 100 pixels across. Intervals are halved until their quarter points lie within half of it, the
-// margin for the deviation between the points checked.
-constexpr double kRelativeBound = 1e-4;
-constexpr double kRelativeTolerance = 0.5 * kRelativeBound;
 // Elements per accessor: an all-zero accessor (no bufferView) costs no bytes of the file.
 constexpr std::size_t kMaxAccessorCount = std::size_t{1} << 25;
-// Deformation keys times vertices of one morphed object (24 bytes each).
+// Deformation keys times vertices of one morphed object (24 bytes each); more goes to an exact motion.
 constexpr std::size_t kMaxMorphPositions = std::size_t{1} << 25;
 // Nodes from a root to a leaf: the walk recurses, and every object composes its whole chain.
 constexpr std::size_t kMaxHierarchyDepth = 1024;
@@ -520,15 +515,12 @@ private:
 
     void addMeshInstance(const std::vector<std::size_t>& chain);
     void buildObject(const std::vector<std::size_t>& chain, std::size_t prim, PrimitiveGeometry g);
-    // Positions over time as deformation keys: at every key time of `tracks` (with STEP holds), bisected
-    // unless `exact`; only inside the rendered span when `span`.
-    struct DeformationSource {
-        std::function<std::vector<glm::dvec3>(double)> at;
-        std::vector<const Track*> tracks;
-        bool exact = true;
-        bool span = false;
-    };
-    void followDeformation(Object& object, const DeformationSource& source, const std::string& where);
+    // Morph weights that interpolate linearly (or STEP) become deformation keys at their key times (with
+    // STEP holds): positions are linear in the weights, so the keys are exact.
+    void morphKeys(Object& object, const PrimitiveGeometry& g, const Track& weights, const std::string& where);
+    // Whether keys reproduce the motion (see planKeys), or the object needs an exact motion.
+    bool keyable(const SplitChain& s, const Track* weights) const;
+    std::vector<TransformKey> exactKeys(const ChainMotion& motion, const std::string& where) const;
 
     static std::vector<glm::dvec3> morphed(const PrimitiveGeometry& g, const Track& weights, double t) {
         std::vector<double> w(weights.width);
@@ -545,16 +537,9 @@ private:
                          "material " + std::to_string(p.material) + " does not exist");
         return p.material < 0 ? static_cast<int>(default_material_) : p.material;
     }
-    void clipToSpan(KeyPlan& plan) const;
-
-    // A skin whose joints do not move: one key, the bind pose, at time 0.
-    static Track stillTrack() {
-        Track t;
-        t.times = {0.0};
-        t.values = {0.0, 0.0, 0.0};
-        return t;
-    }
-    DeformationSource skinSource(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
+    SkinBinding skinBinding(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
+    Object skinnedObject(Object object, std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
+    MorphBinding morphBinding(const PrimitiveGeometry& g, const Track* weights) const;
     std::vector<const AnimatedNode*> chainTo(std::size_t node) const;
     void checkJumps(const KeyPlan& plan, const std::string& where) const;
     void pickCamera();
@@ -565,8 +550,9 @@ private:
     std::filesystem::path folder_;  // image URIs are relative to the glTF file
     GltfScene out_;
     std::size_t default_material_ = 0;
-    std::vector<AnimatedNode> nodes_;
-    std::deque<Track> tracks_;
+    std::shared_ptr<AnimationStore> store_ = std::make_shared<AnimationStore>();  // shared by exact motions
+    std::vector<AnimatedNode>& nodes_ = store_->nodes;
+    std::deque<Track>& tracks_ = store_->tracks;
     std::map<std::size_t, const Track*> weight_tracks_;
     std::map<std::size_t, std::size_t> parents_;
     std::set<std::pair<std::size_t, std::string>> targeted_;
@@ -642,10 +628,7 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
             if (!g.normals.empty()) object.mesh.corner_normals.push_back(g.normals[v]);
         }
     if (n.skin >= 0) {
-        // A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints.
-        object.mesh.positions = g.positions;
-        followDeformation(object, skinSource(node, mesh.primitives[prim], g), where + "/skin");
-        out_.objects.push_back(std::move(object));
+        out_.objects.push_back(skinnedObject(std::move(object), node, mesh.primitives[prim], g));
         return;
     }
     const SplitChain s = split(chain);
@@ -660,99 +643,79 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
     const std::vector<double> rest = restWeights(node, g.targets.size());
     for (std::size_t t = 0; t < g.targets.size(); ++t)
         for (std::size_t v = 0; v < g.positions.size(); ++v) object.mesh.positions[v] += rest[t] * g.targets[t][v];
-    const auto weights = weight_tracks_.find(node);
-    if (weights != weight_tracks_.end()) {
-        DeformationSource morph;
-        morph.at = [&](double t) { return morphed(g, *weights->second, t); };
-        morph.tracks = {weights->second};
-        morph.exact = weights->second->interpolation != Interpolation::CubicSpline;
-        followDeformation(object, morph, where + "/weights");
-    }
-
-    if (s.animated) {
-        glm::dvec3 lo(std::numeric_limits<double>::max());
-        glm::dvec3 hi(std::numeric_limits<double>::lowest());
-        const auto grow = [&](const std::vector<glm::dvec3>& ps) {
-            for (const glm::dvec3& p : ps) {
-                lo = glm::min(lo, p);
-                hi = glm::max(hi, p);
-            }
-        };
-        grow(object.mesh.positions);
-        for (const DeformationKey& k : object.deformation) grow(k.positions);
-        ResampleSpec spec;
-        for (int c = 0; c < 8; ++c) spec.corners.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
-        const KeyPlan plan = planKeys(s.motion);
-        checkJumps(plan, where);
-        const glm::dmat4 first = s.motion.world(plan.times.front());
-        const double size = glm::length(glm::dvec3(first * glm::dvec4(hi, 1.0)) - glm::dvec3(first * glm::dvec4(lo, 1.0)));
-        spec.tolerance = std::max(kRelativeTolerance * size, 1e-12);
-        spec.max_keys = request_.max_transform_keys;
-        try {
-            object.transform = followChain(s.motion, plan, spec);
-        } catch (const std::domain_error& e) {
-            reader_.fail(where, std::string("its world transform has ") + e.what() + ", which transform keys cannot hold");
-        } catch (const std::length_error&) {
-            reader_.fail(where, "its motion needs more than " + std::to_string(spec.max_keys) + " transform keys");
-        }
+    const auto found = weight_tracks_.find(node);
+    const Track* weights = found == weight_tracks_.end() ? nullptr : found->second;
+    if (s.animated) checkJumps(planKeys(s.motion), where);
+    if (keyable(s, weights)) {
+        if (weights) morphKeys(object, g, *weights, where + "/weights");
+        if (s.animated) object.transform = exactKeys(s.motion, where);
+    } else {
+        if (weights) checkJumps(planTimes({weights}), where + "/weights");
+        auto motion = std::make_shared<ExactMotion>(store_, s.animated ? s.motion : ChainMotion{});
+        if (weights) motion->setMorph(morphBinding(g, weights));
+        object.motion = std::move(motion);
     }
     out_.objects.push_back(std::move(object));
 }
 
-void SceneBuilder::followDeformation(Object& object, const DeformationSource& source, const std::string& where) {
-    const auto at = [&](double t) { return DeformationKey{t, source.at(t)}; };
-    KeyPlan plan = planTimes(source.tracks);
-    checkJumps(plan, where);
-    if (source.span) clipToSpan(plan);
-    std::vector<DeformationKey> keys{at(plan.times.front())};
-    double size = 0.0;
-    for (const glm::dvec3& p : keys[0].positions) size = std::max(size, glm::length(p - keys[0].positions[0]));
-    const double tolerance = std::max(kRelativeTolerance * size, 1e-12);
-    const auto deviation = [&](const DeformationKey& a, const DeformationKey& b, double u) {
-        const DeformationKey exact = at(a.time + u * (b.time - a.time));
-        double worst = 0.0;
-        for (std::size_t v = 0; v < exact.positions.size(); ++v)
-            worst = std::max(worst, glm::length(glm::mix(a.positions[v], b.positions[v], u) - exact.positions[v]));
-        return worst;
-    };
-    std::size_t i = 1;
-    while (i < plan.times.size()) {
-        DeformationKey next = at(plan.times[i]);
-        // Not linear between the key times: halve the interval until the quarter points lie within the
-        // tolerance.
-        while (!source.exact && !plan.jump_after[i - 1] && keys.size() < request_.max_deformation_keys &&
-               std::max({deviation(keys.back(), next, 0.25), deviation(keys.back(), next, 0.5),
-                         deviation(keys.back(), next, 0.75)}) > tolerance)
-            next = at(0.5 * (keys.back().time + next.time));
-        if (next.time == plan.times[i]) ++i;
-        keys.push_back(std::move(next));
-        if (keys.size() > request_.max_deformation_keys || keys.size() * object.mesh.positions.size() > kMaxMorphPositions)
-            reader_.fail(where, "the deformation needs more than " + std::to_string(request_.max_deformation_keys) +
-                                    " keys or more than " + std::to_string(kMaxMorphPositions) + " key positions");
-    }
-    object.mesh.positions = keys.front().positions;
-    object.deformation = std::move(keys);
+// A skinned mesh ignores its node's transform (glTF 2.0, 3.7.3): positions come from the joints, followed
+// exactly; the mesh keeps the bind pose with the rest weights.
+Object SceneBuilder::skinnedObject(Object object, std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g) {
+    object.mesh.positions = g.positions;
+    const std::vector<double> rest = restWeights(node, g.targets.size());
+    for (std::size_t t = 0; t < g.targets.size(); ++t)
+        for (std::size_t v = 0; v < g.positions.size(); ++v) object.mesh.positions[v] += rest[t] * g.targets[t][v];
+    auto motion = std::make_shared<ExactMotion>(store_, ChainMotion{});
+    SkinBinding skin = skinBinding(node, p, g);
+    const auto morph = weight_tracks_.find(node);
+    if (morph != weight_tracks_.end()) motion->setMorph(morphBinding(g, morph->second));
+    std::vector<const Track*> tracks;
+    for (const ChainMotion& joint : skin.joints)
+        for (const AnimatedNode* a : joint.chain) tracks.insert(tracks.end(), {a->translation, a->rotation, a->scale});
+    if (morph != weight_tracks_.end()) tracks.push_back(morph->second);
+    tracks.erase(std::remove(tracks.begin(), tracks.end(), nullptr), tracks.end());
+    checkJumps(planTimes(tracks), pointer("nodes", node) + "/skin");
+    motion->setSkin(std::move(skin));
+    object.motion = std::move(motion);
+    return object;
 }
 
-// Key times inside the rendered span only, with its ends: skins need keys at every joint's key time,
-// and a long animation would exceed Embree's 129 time steps for nothing outside the frames rendered.
-void SceneBuilder::clipToSpan(KeyPlan& plan) const {
-    const double lo = request_.frames.first + request_.shutter.open;
-    const double hi = request_.frames.last + request_.shutter.close;
-    KeyPlan clipped;
-    clipped.times.push_back(lo);
-    clipped.jump_after.push_back(false);
-    for (std::size_t i = 0; i < plan.times.size(); ++i)
-        if (plan.times[i] > lo && plan.times[i] < hi) {
-            clipped.jump_after.back() = clipped.jump_after.back() || (i > 0 && plan.jump_after[i - 1]);
-            clipped.times.push_back(plan.times[i]);
-            clipped.jump_after.push_back(plan.jump_after[i]);
-        }
-    if (hi > lo) {
-        clipped.times.push_back(hi);
-        clipped.jump_after.push_back(false);
+// Keys where they are exact and within the key limits (a STEP hold per key at most counted); an exact
+// motion otherwise, which has no limit.
+bool SceneBuilder::keyable(const SplitChain& s, const Track* weights) const {
+    if (weights && (weights->interpolation == Interpolation::CubicSpline ||
+                    2 * weights->times.size() > request_.max_deformation_keys))
+        return false;
+    if (!s.animated) return true;
+    const KeyPlan plan = planKeys(s.motion);
+    return plan.exact && plan.times.size() <= request_.max_transform_keys;
+}
+
+std::vector<TransformKey> SceneBuilder::exactKeys(const ChainMotion& motion, const std::string& where) const {
+    ResampleSpec spec;
+    spec.max_keys = request_.max_transform_keys;
+    try {
+        return followChain(motion, planKeys(motion), spec);
+    } catch (const std::domain_error& e) {
+        reader_.fail(where, std::string("its world transform has ") + e.what() + ", which transform keys cannot hold");
     }
-    plan = std::move(clipped);
+}
+
+MorphBinding SceneBuilder::morphBinding(const PrimitiveGeometry& g, const Track* weights) const {
+    MorphBinding morph;
+    morph.weights = weights;
+    morph.base = g.positions;
+    morph.targets = g.targets;
+    return morph;
+}
+
+void SceneBuilder::morphKeys(Object& object, const PrimitiveGeometry& g, const Track& weights, const std::string& where) {
+    const KeyPlan plan = planTimes({&weights});
+    checkJumps(plan, where);
+    if (plan.times.size() * object.mesh.positions.size() > kMaxMorphPositions)
+        reader_.fail(where, "the morph needs more than " + std::to_string(kMaxMorphPositions) + " key positions");
+    for (const double t : plan.times) object.deformation.push_back(DeformationKey{t, morphed(g, weights, t)});
+    object.mesh.positions = object.deformation.front().positions;
 }
 
 std::vector<const AnimatedNode*> SceneBuilder::chainTo(std::size_t node) const {
@@ -768,8 +731,7 @@ std::vector<const AnimatedNode*> SceneBuilder::chainTo(std::size_t node) const {
 
 // Linear blend skinning (glTF 2.0, 3.7.3): each vertex moved by the weighted sum of its joints' world
 // matrices times their inverse bind matrices, after the morph targets.
-SceneBuilder::DeformationSource SceneBuilder::skinSource(std::size_t node, const tinygltf::Primitive& p,
-                                                         const PrimitiveGeometry& g) {
+SkinBinding SceneBuilder::skinBinding(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g) {
     const auto skin_index = static_cast<std::size_t>(model_.nodes[node].skin);
     const tinygltf::Skin& skin = model_.skins[skin_index];
     const std::string where = pointer("skins", skin_index);
@@ -780,55 +742,30 @@ SceneBuilder::DeformationSource SceneBuilder::skinSource(std::size_t node, const
     const auto weights_at = p.attributes.find("WEIGHTS_0");
     if (joints_at == p.attributes.end() || weights_at == p.attributes.end())
         reader_.fail(pointer("nodes", node), "a skinned mesh needs JOINTS_0 and WEIGHTS_0");
-    auto joints = std::make_shared<std::vector<std::uint32_t>>(reader_.unsignedInts(joints_at->second, TINYGLTF_TYPE_VEC4, "JOINTS_0"));
-    auto weights = std::make_shared<std::vector<double>>(reader_.floats(weights_at->second, TINYGLTF_TYPE_VEC4, "WEIGHTS_0"));
-    if (joints->size() != 4 * g.positions.size() || weights->size() != 4 * g.positions.size())
+    SkinBinding out;
+    out.joint_ids = reader_.unsignedInts(joints_at->second, TINYGLTF_TYPE_VEC4, "JOINTS_0");
+    out.weights = reader_.floats(weights_at->second, TINYGLTF_TYPE_VEC4, "WEIGHTS_0");
+    if (out.joint_ids.size() != 4 * g.positions.size() || out.weights.size() != 4 * g.positions.size())
         reader_.fail(pointer("nodes", node), "JOINTS_0 and WEIGHTS_0 need one element per vertex");
-    for (const std::uint32_t j : *joints)
+    for (const std::uint32_t j : out.joint_ids)
         if (j >= skin.joints.size())
             reader_.fail(pointer("accessors", static_cast<std::size_t>(joints_at->second)),
                          "joint " + std::to_string(j) + " is out of range: the skin has " + std::to_string(skin.joints.size()));
-    auto bind = std::make_shared<std::vector<glm::dmat4>>(skin.joints.size(), glm::dmat4(1.0));
+    out.inverse_bind.assign(skin.joints.size(), glm::dmat4(1.0));
     if (skin.inverseBindMatrices >= 0) {
         const std::vector<double> m = reader_.floats(skin.inverseBindMatrices, TINYGLTF_TYPE_MAT4, "inverseBindMatrices");
         if (m.size() != 16 * skin.joints.size()) reader_.fail(where, "inverseBindMatrices needs one matrix per joint");
-        for (std::size_t j = 0; j < bind->size(); ++j)
+        for (std::size_t j = 0; j < out.inverse_bind.size(); ++j)
             for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r) (*bind)[j][c][r] = m[16 * j + static_cast<std::size_t>(4 * c + r)];
+                for (int r = 0; r < 4; ++r) out.inverse_bind[j][c][r] = m[16 * j + static_cast<std::size_t>(4 * c + r)];
     }
-    DeformationSource source;
-    auto chains = std::make_shared<std::vector<ChainMotion>>();
     for (std::size_t j = 0; j < skin.joints.size(); ++j) {
         const int joint = skin.joints[j];
         if (joint < 0 || static_cast<std::size_t>(joint) >= nodes_.size())
             reader_.fail(where + "/joints/" + std::to_string(j), "node " + std::to_string(joint) + " does not exist");
-        chains->push_back(ChainMotion{chainTo(static_cast<std::size_t>(joint))});
-        for (const AnimatedNode* a : chains->back().chain)
-            for (const Track* t : {a->translation, a->rotation, a->scale})
-                if (t && std::find(source.tracks.begin(), source.tracks.end(), t) == source.tracks.end())
-                    source.tracks.push_back(t);
+        out.joints.push_back(ChainMotion{chainTo(static_cast<std::size_t>(joint))});
     }
-    const auto morph = weight_tracks_.find(node);
-    const Track* morph_track = morph == weight_tracks_.end() ? nullptr : morph->second;
-    if (morph_track) source.tracks.push_back(morph_track);
-    if (source.tracks.empty()) source.tracks.push_back(&tracks_.emplace_back(stillTrack()));
-    source.exact = false;
-    source.span = true;
-    auto rest = std::make_shared<std::vector<glm::dvec3>>(g.positions);
-    const std::vector<double> rest_weights = restWeights(node, g.targets.size());
-    for (std::size_t t = 0; t < g.targets.size(); ++t)
-        for (std::size_t v = 0; v < rest->size(); ++v) (*rest)[v] += rest_weights[t] * g.targets[t][v];
-    source.at = [=, &g](double t) {
-        const std::vector<glm::dvec3> base = morph_track ? morphed(g, *morph_track, t) : *rest;
-        std::vector<glm::dmat4> m(chains->size());
-        for (std::size_t j = 0; j < m.size(); ++j) m[j] = (*chains)[j].world(t) * (*bind)[j];
-        std::vector<glm::dvec3> out(base.size(), glm::dvec3(0.0));
-        for (std::size_t v = 0; v < base.size(); ++v)
-            for (std::size_t k = 0; k < 4; ++k)
-                out[v] += (*weights)[4 * v + k] * glm::dvec3(m[(*joints)[4 * v + k]] * glm::dvec4(base[v], 1.0));
-        return out;
-    };
-    return source;
+    return out;
 }
 
 void SceneBuilder::pickCamera() {

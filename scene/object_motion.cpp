@@ -4,6 +4,8 @@
 #include <array>
 #include <limits>
 
+#include "scene/exact_motion.h"
+
 namespace clipblur {
 
 namespace {
@@ -37,6 +39,10 @@ RigidTransform evalTransform(const std::vector<TransformKey>& keys, double t) {
 }
 
 glm::dvec3 evalVertex(const Object& object, std::uint32_t index, double t) {
+    if (object.motion) {
+        const std::uint32_t only[1] = {index};
+        return object.motion->pose(object.mesh.positions, t, ExactMotion::Rates::Skip, only).vertex(index);
+    }
     glm::dvec3 p = object.mesh.positions[index];
     if (!object.deformation.empty()) {
         const auto [i, w] = bracket(object.deformation, t);
@@ -46,7 +52,23 @@ glm::dvec3 evalVertex(const Object& object, std::uint32_t index, double t) {
     return evalTransform(object.transform, t).apply(p);
 }
 
+void evalTriangle(const Object& object, std::uint32_t triangle, double t, glm::dvec3 out[3]) {
+    const auto& tri = object.mesh.triangles[triangle];
+    if (!object.motion) {
+        for (int k = 0; k < 3; ++k) out[k] = evalVertex(object, tri[k], t);
+        return;
+    }
+    const ExactPose pose = object.motion->pose(object.mesh.positions, t, ExactMotion::Rates::Skip, tri);
+    for (int k = 0; k < 3; ++k) out[k] = pose.vertex(tri[k]);
+}
+
 void evalVertices(const Object& object, double t, std::vector<glm::dvec3>& out) {
+    if (object.motion) {
+        const ExactPose pose = object.motion->pose(object.mesh.positions, t, ExactMotion::Rates::Skip);
+        out.resize(object.mesh.positions.size());
+        for (std::size_t i = 0; i < out.size(); ++i) out[i] = pose.vertex(static_cast<std::uint32_t>(i));
+        return;
+    }
     const RigidTransform transform = evalTransform(object.transform, t);
     const std::size_t n = object.mesh.positions.size();
     out.resize(n);
@@ -78,13 +100,40 @@ bool keysConstantOver(const std::vector<Key>& keys, double t0, double t1, Same s
 
 }  // namespace
 
+glm::dmat4 worldMatrix(const Object& object, double t) {
+    if (object.motion && object.motion->skinned()) return glm::dmat4(1.0);
+    if (object.motion) return object.motion->pose(object.mesh.positions, t, ExactMotion::Rates::Skip).world;
+    const RigidTransform x = evalTransform(object.transform, t);
+    return trsMatrix(x);
+}
+
+glm::dmat3 normalMatrix(const Object& object, double t) {
+    if (object.motion && object.motion->skinned()) return glm::dmat3(1.0);
+    if (object.motion) return object.motion->pose(object.mesh.positions, t, ExactMotion::Rates::Skip).normalMatrix();
+    return glm::transpose(glm::inverse(glm::dmat3(worldMatrix(object, t))));
+}
+
+bool deforms(const Object& object) { return !object.deformation.empty() || (object.motion && object.motion->deforms()); }
+
+void addMotionKeyTimes(const Object& object, double t0, double t1, std::vector<double>& times) {
+    const auto add = [&](double t) {
+        if (t > t0 && t < t1) times.push_back(t);
+    };
+    for (const TransformKey& k : object.transform) add(k.time);
+    for (const DeformationKey& k : object.deformation) add(k.time);
+    if (object.motion)
+        for (const double t : object.motion->keyTimes()) add(t);
+}
+
 bool deformsOver(const Object& object, double t0, double t1) {
+    if (object.motion) return object.motion->deforms() && !object.motion->constantOver(t0, t1);
     return !keysConstantOver(object.deformation, t0, t1, [](const DeformationKey& a, const DeformationKey& b) {
         return a.positions == b.positions;
     });
 }
 
 bool isStatic(const Object& object, double t0, double t1) {
+    if (object.motion) return object.motion->constantOver(t0, t1);
     const bool rigid = keysConstantOver(object.transform, t0, t1, [](const TransformKey& a, const TransformKey& b) {
         return a.translate == b.translate && a.scale == b.scale &&
                (a.rotate == b.rotate || a.rotate == -b.rotate);
@@ -94,15 +143,14 @@ bool isStatic(const Object& object, double t0, double t1) {
 
 namespace {
 
-// The times at which motions are compared: t0, t1, every transform key inside, and three times inside each
-// gap between them. Inside a gap no object passes a key, so each moves along one arc (translation and
-// scale linear, rotation at a constant rate); two different arcs that agree at both ends and three inner
-// times would be a coincidence that real keys do not make.
+// The times at which motions are compared: t0, t1, every key inside, and three times inside each gap
+// between them. Inside a gap no object passes a key, so each moves along one arc (translation and scale
+// linear, rotation at a constant rate) or, for an exact glTF motion, one product of polynomials and slerp
+// arcs; two different such motions that agree at both ends and three inner times would be a coincidence
+// that real animation does not make.
 std::vector<double> comparisonTimes(const Scene& scene, double t0, double t1) {
     std::vector<double> keys{t0, t1};
-    for (const Object& object : scene.objects)
-        for (const TransformKey& key : object.transform)
-            if (key.time > t0 && key.time < t1) keys.push_back(key.time);
+    for (const Object& object : scene.objects) addMotionKeyTimes(object, t0, t1, keys);
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     std::vector<double> times;
@@ -120,11 +168,19 @@ std::vector<std::uint32_t> motionGroups(const Scene& scene, double t0, double t1
     // An affine map is fixed by four points that are not coplanar: a corner of the scene's box and one
     // step along each axis, a step as long as the box, so that differences are measured at its scale.
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    std::vector<glm::dvec3> world;
     for (const Object& object : scene.objects) {
-        const RigidTransform start = evalTransform(object.transform, t0);
-        for (const glm::dvec3& p : object.mesh.positions) {
-            lo = glm::min(lo, start.apply(p));
-            hi = glm::max(hi, start.apply(p));
+        // Keyed objects by their rest mesh under the transform (deformation aside), exact ones as posed.
+        if (object.motion) {
+            evalVertices(object, t0, world);
+        } else {
+            const RigidTransform start = evalTransform(object.transform, t0);
+            world.clear();
+            for (const glm::dvec3& p : object.mesh.positions) world.push_back(start.apply(p));
+        }
+        for (const glm::dvec3& p : world) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
         }
     }
     const glm::dvec3 size = hi - lo;
@@ -135,8 +191,18 @@ std::vector<std::uint32_t> motionGroups(const Scene& scene, double t0, double t1
     // Where each object's motion carries the points: with p = T(t0)^-1 q fixed, T(t) p for every time.
     const std::vector<double> times = comparisonTimes(scene, t0, t1);
     const auto track = [&](const Object& object) {
-        const RigidTransform start = evalTransform(object.transform, t0);
         std::vector<glm::dvec3> out;
+        if (object.motion) {
+            const glm::dmat4 inverse = glm::inverse(worldMatrix(object, t0));
+            std::vector<glm::dmat4> at;
+            for (const double t : times) at.push_back(worldMatrix(object, t));
+            for (const glm::dvec3& q : points) {
+                const glm::dvec4 p = inverse * glm::dvec4(q, 1.0);
+                for (const glm::dmat4& m : at) out.push_back(glm::dvec3(m * p));
+            }
+            return out;
+        }
+        const RigidTransform start = evalTransform(object.transform, t0);
         for (const glm::dvec3& q : points) {
             const glm::dvec3 p = glm::inverse(start.rotate) * (q - start.translate) / start.scale;
             for (const double t : times) out.push_back(evalTransform(object.transform, t).apply(p));
@@ -151,9 +217,13 @@ std::vector<std::uint32_t> motionGroups(const Scene& scene, double t0, double t1
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
         const Object& object = scene.objects[o];
         group[o] = o;
-        // A deforming object, or one squashed flat at t0 (no inverse), keeps a group of its own.
+        // A deforming object (a skin even when still: its joints are not one matrix), or one squashed flat at
+        // t0 (no inverse), keeps a group of its own.
         const glm::dvec3 scale = evalTransform(object.transform, t0).scale;
-        if (deformsOver(object, t0, t1) || scale.x == 0.0 || scale.y == 0.0 || scale.z == 0.0) continue;
+        const bool flat = object.motion ? !(std::abs(glm::determinant(glm::dmat3(worldMatrix(object, t0)))) > 0.0)
+                                        : scale.x == 0.0 || scale.y == 0.0 || scale.z == 0.0;
+        const bool skin = object.motion && object.motion->skinned();
+        if (deformsOver(object, t0, t1) || flat || skin) continue;
         std::vector<glm::dvec3> mine = track(object);
         const auto same = [&](const std::vector<glm::dvec3>& other) {
             for (std::size_t i = 0; i < mine.size(); ++i)

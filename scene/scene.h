@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -93,11 +94,16 @@ struct Light {
     glm::dvec3 position{0.0};             // point
 };
 
+class ExactMotion;  // scene/exact_motion.h
+
 struct Object {
     std::string name;
     Mesh mesh;                                 // rest positions, also the key at every time without deformation
     std::vector<DeformationKey> deformation;   // sorted by time; empty means rigid
     std::vector<TransformKey> transform;       // sorted by time; empty means identity
+    // glTF motion that keys cannot hold exactly, evaluated at every time asked; set, it is the object's
+    // whole motion (no transform or deformation keys) and the mesh holds its rest pose.
+    std::shared_ptr<const ExactMotion> motion;
     int material = 0;
     FileLoc loc;
 };

@@ -105,8 +105,9 @@ void checkObject(const Object& o, std::size_t index, const Scene& scene, const S
 std::pair<glm::dvec3, glm::dvec3> worldBounds(const Object& o, double t) {
     glm::dvec3 lo(std::numeric_limits<double>::infinity());
     glm::dvec3 hi(-std::numeric_limits<double>::infinity());
-    for (std::uint32_t v = 0; v < o.mesh.positions.size(); ++v) {
-        const glm::dvec3 p = evalVertex(o, v, t);
+    std::vector<glm::dvec3> world;
+    evalVertices(o, t, world);
+    for (const glm::dvec3& p : world) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
     }

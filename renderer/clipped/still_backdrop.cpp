@@ -17,6 +17,8 @@ namespace {
 // of a vertex from the origin (scale and deformation are linear between keys too, so bounded at them).
 double farthestDepth(const FrameMotion& motion, std::size_t o, const CameraFrame& frame) {
     const Object& object = motion.scene().objects[o];
+    // An exact glTF motion has no bound read off keys: it could reach anywhere, so nothing lies behind it.
+    if (object.motion) return std::numeric_limits<double>::infinity();
     const double t0 = motion.t0(), t1 = motion.t1();
     std::vector<double> times{t0, t1};
     double scale = 0.0;

@@ -53,10 +53,7 @@ ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& pro
     : scene_(&scene), middle_(scene, projection, 0.5 * (t0 + t1)), duration_(std::max(0.0, t1 - t0)) {
     breakpoints_.push_back(t0);
     addKeyTimes(breakpoints_, t0, t1, scene.camera.keys);
-    for (const Object& object : scene.objects) {
-        addKeyTimes(breakpoints_, t0, t1, object.transform);
-        addKeyTimes(breakpoints_, t0, t1, object.deformation);
-    }
+    for (const Object& object : scene.objects) addMotionKeyTimes(object, t0, t1, breakpoints_);
     std::sort(breakpoints_.begin(), breakpoints_.end());
     breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
     if (t1 > t0) breakpoints_.push_back(t1);

@@ -30,6 +30,10 @@ Segment segmentAt(const std::vector<Key>& keys, double t) {
 
 ObjectMotionState objectStateAt(const Object& object, double t) {
     ObjectMotionState state;
+    if (object.motion) {
+        state.exact = object.motion->pose(object.mesh.positions, t, ExactMotion::Rates::Compute);
+        return state;
+    }
     state.transform = evalTransform(object.transform, t);
     const Segment rigid = segmentAt(object.transform, t);
     if (rigid.moving) {
@@ -47,6 +51,19 @@ ObjectMotionState objectStateAt(const Object& object, double t) {
     state.deform_weight = deform.weight;
     state.deform_rate = deform.moving ? deform.rate : 0.0;
     return state;
+}
+
+// World position of a surface point of an exactly moving object and, when `rate` is given, its time
+// derivative: the convex combination of its triangle's posed vertices (the pose is affine per vertex).
+glm::dvec3 exactPoint(const Object& object, const ExactPose& pose, const MeshPoint& point, glm::dvec3* rate) {
+    const auto& tri = object.mesh.triangles[point.triangle];
+    glm::dvec3 position(0.0);
+    if (rate) *rate = glm::dvec3(0.0);
+    for (int j = 0; j < 3; ++j) {
+        position += point.b[j] * pose.vertex(tri[j]);
+        if (rate) *rate += point.b[j] * pose.vertexRate(tri[j]);
+    }
+    return position;
 }
 
 // Object-space position of the surface point and, when `rate` is given, its time derivative.
@@ -114,6 +131,10 @@ ProjectedPoint projectRelative(const MotionSnapshot& s, const glm::dvec3& world,
 ProjectedPoint project(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];
+    if (state.exact) {
+        const glm::dvec3 world = exactPoint(object, *state.exact, point, nullptr);
+        return projectRelative(snapshot, world, world - snapshot.camera.position);
+    }
     const glm::dvec3 local = objectSpacePoint(object, state, point, nullptr);
     // Affine transform of a convex combination = convex combination of transformed vertices.
     const glm::dvec3 world = state.transform.apply(local);
@@ -145,13 +166,18 @@ std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projec
 ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];
-    glm::dvec3 local_rate;
-    const glm::dvec3 local = objectSpacePoint(object, state, point, &local_rate);
-    const RigidTransform& xf = state.transform;
-    const glm::dvec3 rotated = xf.rotate * (xf.scale * local);
-    const glm::dvec3 world = xf.translate + rotated;
-    const glm::dvec3 world_rate = state.translate_rate + glm::cross(state.angular_velocity, rotated) +
-                                  xf.rotate * (state.scale_rate * local + xf.scale * local_rate);
+    glm::dvec3 world, world_rate;
+    if (state.exact) {
+        world = exactPoint(object, *state.exact, point, &world_rate);
+    } else {
+        glm::dvec3 local_rate;
+        const glm::dvec3 local = objectSpacePoint(object, state, point, &local_rate);
+        const RigidTransform& xf = state.transform;
+        const glm::dvec3 rotated = xf.rotate * (xf.scale * local);
+        world = xf.translate + rotated;
+        world_rate = state.translate_rate + glm::cross(state.angular_velocity, rotated) +
+                     xf.rotate * (state.scale_rate * local + xf.scale * local_rate);
+    }
 
     ProjectedMotion out;
     const glm::dvec3 d = world - snapshot.camera.position;

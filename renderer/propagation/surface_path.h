@@ -2,12 +2,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "scene/camera.h"
+#include "scene/exact_motion.h"
 #include "scene/object_motion.h"
 #include "scene/scene.h"
 
@@ -35,6 +37,7 @@ struct ObjectMotionState {
     std::size_t deform_key = 0;        // object-space positions lerp(keys[k], keys[k+1], weight)
     double deform_weight = 0.0;
     double deform_rate = 0.0;          // d weight / dt
+    std::optional<ExactPose> exact;    // an exact motion's pose and rates; then the fields above are unused
 };
 
 // Everything about the scene's motion at one time that projecting a surface point needs, computed once

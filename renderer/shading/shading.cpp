@@ -71,8 +71,7 @@ Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows, FragmentSh
         const Object& object = scene_.objects[o];
         if (!motion.shutter().objectStill(o)) continue;
         auto& world = static_world_[o];
-        world.resize(object.mesh.positions.size());
-        for (std::size_t i = 0; i < world.size(); ++i) world[i] = evalVertex(object, static_cast<std::uint32_t>(i), motion.t0());
+        evalVertices(object, motion.t0(), world);  // evalVertex's arithmetic, the motion evaluated once
     }
 }
 
@@ -92,12 +91,12 @@ SurfaceGeometry Shader::geometry(const SurfacePoint& sp) const {
     const auto& cached = static_world_[static_cast<std::size_t>(sp.object)];
     if (!cached.empty()) {
         for (int k = 0; k < 3; ++k) v[k] = cached[tri[k]];
-    } else if (object.deformation.empty()) {
+    } else if (object.deformation.empty() && !object.motion) {
         // Same arithmetic as evalVertex, with the transform evaluated once for the three vertices.
         const RigidTransform x = motion_.transform(static_cast<std::size_t>(sp.object), sp.time);
         for (int k = 0; k < 3; ++k) v[k] = x.apply(object.mesh.positions[tri[k]]);
     } else {
-        for (int k = 0; k < 3; ++k) v[k] = evalVertex(object, tri[k], sp.time);
+        evalTriangle(object, sp.triangle, sp.time, v);
     }
     const double w = 1.0 - sp.u - sp.v;
     SurfaceGeometry g;
@@ -131,7 +130,9 @@ void Shader::addCornerAttributes(const SurfacePoint& sp, SurfaceGeometry& g) con
     if (!mesh.smooth() || g.normal == glm::dvec3(0.0)) return;
     const Object& object = scene_.objects[static_cast<std::size_t>(sp.object)];
     const RigidTransform x = evalTransform(object.transform, sp.time);
-    const auto toWorld = [&](const glm::dvec3& n) { return x.rotate * (n / x.scale); };
+    // An exact motion's matrix may shear: normals go by its inverse transpose.
+    const glm::dmat3 exact = object.motion ? normalMatrix(object, sp.time) : glm::dmat3(1.0);
+    const auto toWorld = [&](const glm::dvec3& n) { return object.motion ? exact * n : x.rotate * (n / x.scale); };
     const glm::dvec3 n = toWorld(w * mesh.corner_normals[corner] + sp.u * mesh.corner_normals[corner + 1] +
                                  sp.v * mesh.corner_normals[corner + 2]);
     const auto& tri = mesh.triangles[sp.triangle];
@@ -144,7 +145,7 @@ void Shader::addCornerAttributes(const SurfacePoint& sp, SurfaceGeometry& g) con
     const glm::dvec3 front = glm::dot(face, g.normal) < 0.0 ? -g.normal : g.normal;
     const double side = glm::dot(face, g.normal) < 0.0 ? -1.0 : 1.0;
     glm::dvec3 s = n / n_length;
-    if (!object.deformation.empty() && glm::dot(face / face_length, front) > -0.999999)
+    if (deforms(object) && glm::dot(face / face_length, front) > -0.999999)
         s = turnLike(face / face_length, front, s);
     g.shading_normal = side * glm::normalize(s);
 }

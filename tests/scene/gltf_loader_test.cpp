@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/camera.h"
+#include "scene/exact_motion.h"
 #include "scene/object_motion.h"
 #include "support/gltf_writer.h"
 #include "support/texture_files.h"
@@ -247,7 +248,7 @@ TEST(GltfLoader, CentredShutterMeetsAStepJumpAtItsFrame) {
     }
 }
 
-TEST(GltfLoader, CubicSplineIsResampledWithinTheStatedBound) {
+TEST(GltfLoader, CubicSplineIsFollowedExactly) {
     GltfWriter w;
     const int mesh = addTetraMesh(w);
     const int node = addNode(w, {{"name", "swing"}, {"mesh", mesh}});
@@ -270,21 +271,23 @@ TEST(GltfLoader, CubicSplineIsResampledWithinTheStatedBound) {
         const double h00 = 2 * u * u * u - 3 * u * u + 1, h10 = u * u * u - 2 * u * u + u;
         const double h01 = -2 * u * u * u + 3 * u * u, h11 = u * u * u - u * u;
         const glm::dvec3 t = h10 * glm::dvec3(4, 0, 0) + h01 * glm::dvec3(2, 1, 0) + h11 * glm::dvec3(0, 5, 0);
-        const glm::dquat q0 = toQuat(rot, 4), q1 = toQuat(rot, 16);
+        // Appendix C interpolates the stored (float, not quite unit) values, then normalises.
+        const glm::dquat q0(rot[7], rot[4], rot[5], rot[6]), q1(rot[19], rot[16], rot[17], rot[18]);
         const glm::dquat q = glm::normalize(glm::dquat(h00 * q0.w + h01 * q1.w, h00 * q0.x + h01 * q1.x,
                                                        h00 * q0.y + h01 * q1.y, h00 * q0.z + h01 * q1.z));
         return trs(t, q, glm::dvec3(1));
     };
     EXPECT_LT(glm::length(glm::dvec3(hermite(0.5)[3]) - mid), 1e-12);  // the oracle agrees with the hand value
     const auto truth = [&](double t) { return hermite(std::clamp(t / 24.0, 0.0, 1.0)); };
+    ASSERT_TRUE(o.motion);  // no keys: the spline itself
+    EXPECT_TRUE(o.transform.empty());
     const double worst = worstDeviation(o, truth, seededTimes(0, 24, 4000, 3));
-    // The bound: 1e-4 of the object's size (its bounding box diagonal, sqrt 3 here).
-    EXPECT_LT(worst, 1e-4 * std::sqrt(3.0));
-    std::cout << "CUBICSPLINE: " << o.transform.size() << " keys, measured deviation " << worst << " (bound "
-              << 1e-4 * std::sqrt(3.0) << ")\n";
+    // 1e-12 of a unit object: only rounding differs (tangents scaled by 1/fps, then by the interval).
+    EXPECT_LT(worst, 1e-12);
+    std::cout << "CUBICSPLINE: exact motion, measured deviation " << worst << "\n";
 }
 
-TEST(GltfLoader, TwoAnimatedNodesComposeWithinTheStatedBound) {
+TEST(GltfLoader, TwoAnimatedNodesComposeExactly) {
     GltfWriter w;
     const int mesh = addTetraMesh(w);
     const int wheel = addNode(w, {{"name", "wheel"}, {"mesh", mesh}, {"translation", {1, 0.5, 0}}});
@@ -312,9 +315,130 @@ TEST(GltfLoader, TwoAnimatedNodesComposeWithinTheStatedBound) {
         return trs({5 * s, 0, 0}, glm::slerp(toQuat(turn), toQuat(turn, 4), s / 2), glm::dvec3(1)) *
                trs({1, 0.5, 0}, glm::slerp(a, b, k - double(i)), glm::dvec3(1));
     };
+    ASSERT_TRUE(o.motion);
     const double worst = worstDeviation(o, truth, seededTimes(0, 48, 4000, 5));
-    EXPECT_LT(worst, 1e-4 * std::sqrt(3.0));
-    std::cout << "car and wheel: " << o.transform.size() << " keys, measured deviation " << worst << "\n";
+    // 1e-12 against a path 10 units long: the same products, rounded in another order.
+    EXPECT_LT(worst, 1e-12);
+    std::cout << "car and wheel: exact motion, measured deviation " << worst << "\n";
+}
+
+// A world matrix with shear: a node turning under a parent stretched along y (transform keys cannot hold
+// it). Under it, a CUBICSPLINE translation on the middle node. Positions against the product computed
+// here, their rates against central differences, normals by the inverse transpose.
+TEST(GltfLoader, ShearedChainIsFollowedExactlyWithItsRatesAndNormals) {
+    GltfWriter w;
+    const int mesh = addTetraMesh(w);
+    const int child = addNode(w, {{"name", "crate"}, {"mesh", mesh}, {"translation", {0.5, 0, 0}}});
+    const int middle = addNode(w, {{"name", "slider"}, {"children", {child}}});
+    const int stretch = addNode(w, {{"name", "stretch"}, {"children", {middle}}, {"translation", {1, 2, 3}}, {"scale", {1, 3, 0.5}}});
+    setScene(w, {stretch});
+    const std::vector<float> tr = {0, 0, 0, 0, 0, 0, 2, 1, 0, /**/ 0, -3, 0, 1, 1, 1, 0, 0, 0};
+    animate(w, middle, "translation", "CUBICSPLINE", {0, 1}, tr);
+    std::vector<float> rot = quat(10, {0, 0, 1});
+    for (const double a : {80.0, 200.0}) {
+        const std::vector<float> q = quat(a, {0.3, 0.2, 1});
+        rot.insert(rot.end(), q.begin(), q.end());
+    }
+    animate(w, child, "rotation", "LINEAR", {0, 0.5, 1}, rot);
+    const Object o = loadValid(w, "sheared_chain").objects.at(0);
+    ASSERT_TRUE(o.motion);
+    const glm::dmat4 stretch_m = trs({1, 2, 3}, glm::dquat(1, 0, 0, 0), {1, 3, 0.5});
+    const auto truth = [&](double t) {
+        const double u = std::clamp(t / 24.0, 0.0, 1.0);
+        const double h10 = u * u * u - 2 * u * u + u, h01 = -2 * u * u * u + 3 * u * u, h11 = u * u * u - u * u;
+        const glm::dvec3 slide = h10 * glm::dvec3(2, 1, 0) + h01 * glm::dvec3(1, 1, 1) + h11 * glm::dvec3(0, -3, 0);
+        const double k = std::min(2.0 * u, 1.999999999999);
+        const std::size_t i = static_cast<std::size_t>(k);
+        glm::dquat a = toQuat(rot, 4 * i), b = toQuat(rot, 4 * i + 4);
+        if (glm::dot(a, b) < 0) b = -b;
+        const glm::dquat q = u >= 1.0 ? b : glm::slerp(a, b, k - double(i));
+        return stretch_m * trs(slide, glm::dquat(1, 0, 0, 0), glm::dvec3(1)) * trs({0.5, 0, 0}, q, glm::dvec3(1));
+    };
+    const std::vector<double> times = seededTimes(0, 24, 2000, 19);
+    // 1e-12 of a path about 10 long: the same products in another order.
+    const double worst = worstDeviation(o, truth, times);
+    EXPECT_LT(worst, 1e-12);
+    // The matrix does shear: its first two columns are not orthogonal at 6 frames.
+    const glm::dmat4 at6 = truth(6.0);
+    EXPECT_GT(std::abs(glm::dot(glm::normalize(glm::dvec3(at6[0])), glm::normalize(glm::dvec3(at6[1])))), 0.1);
+    double worst_rate = 0.0;
+    double worst_normal = 0.0;
+    for (const double t : times) {
+        if (t <= 1e-3 || t >= 24.0 - 1e-3 || std::abs(t - 12.0) < 1e-3) continue;  // no difference across a key
+        const ExactPose pose = o.motion->pose(o.mesh.positions, t, ExactMotion::Rates::Compute);
+        for (std::uint32_t v = 0; v < 4; ++v) {
+            // Central difference, h = 1e-4 frames: truncation ~h^2 times the third derivative ~ 1e-9,
+            // rounding ~1e-16 / h ~ 1e-12.
+            const double h = 1e-4;
+            const glm::dvec3 fd = (apply(truth(t + h), kTetra[v]) - apply(truth(t - h), kTetra[v])) / (2 * h);
+            worst_rate = std::max(worst_rate, glm::length(pose.vertexRate(v) - fd));
+        }
+        // The face (0, 2, 1)'s normal stays normal to its world edges.
+        const glm::dmat3 normals = normalMatrix(o, t);
+        const glm::dvec3 n = glm::normalize(normals * glm::cross(kTetra[2] - kTetra[0], kTetra[1] - kTetra[0]));
+        for (const auto& [a, b] : std::vector<std::pair<int, int>>{{0, 1}, {0, 2}, {1, 2}})
+            worst_normal = std::max(worst_normal, std::abs(glm::dot(n, glm::normalize(apply(truth(t), kTetra[b]) -
+                                                                                        apply(truth(t), kTetra[a])))));
+    }
+    // Velocities are about 0.1 to 1 unit per frame; 1e-7 is far above the differences' error and far below
+    // a missing term of the product rule.
+    EXPECT_LT(worst_rate, 1e-7);
+    EXPECT_LT(worst_normal, 1e-12);
+    std::cout << "sheared chain: deviation " << worst << ", rate deviation " << worst_rate << ", normal " << worst_normal
+              << "\n";
+}
+
+// CUBICSPLINE morph weights: positions are base + sum w_i(t) d_i with w from the Hermite spline.
+TEST(GltfLoader, CubicSplineMorphWeightsAreFollowedExactly) {
+    GltfWriter w;
+    std::vector<float> p;
+    for (const glm::dvec3& v : kTetra) p.insert(p.end(), {float(v.x), float(v.y), float(v.z)});
+    const int pos = w.addFloats(p, "VEC3", 34962);
+    const int idx = w.addIndices({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}, 5123);
+    const int d0 = w.addFloats({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1}, "VEC3", 34962);
+    const int d1 = w.addFloats({0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3", 34962);
+    w.doc()["meshes"].push_back({{"primitives", json::array({{{"attributes", {{"POSITION", pos}}}, {"indices", idx},
+                                                              {"targets", json::array({{{"POSITION", d0}}, {{"POSITION", d1}}})}}})},
+                                 {"weights", {0, 0}}});
+    const int node = addNode(w, {{"name", "blob"}, {"mesh", 0}});
+    setScene(w, {node});
+    // Per key: in-tangents (2), values (2), out-tangents (2), per second.
+    const std::vector<float> wk = {0, 0, 0, 0, 3, -1, /**/ 1, 2, 1, 0.5f, 0, 0};
+    animate(w, node, "weights", "CUBICSPLINE", {0, 1}, wk);
+    const Object o = loadValid(w, "cubic_morph").objects.at(0);
+    ASSERT_TRUE(o.motion);
+    double worst = 0.0;
+    for (const double t : seededTimes(0, 24, 1000, 23)) {
+        const double u = t / 24.0;
+        const double h10 = u * u * u - 2 * u * u + u, h01 = -2 * u * u * u + 3 * u * u, h11 = u * u * u - u * u;
+        const double w0 = h10 * 3 + h01 * 1 + h11 * 1, w1 = h10 * -1 + h01 * 0.5 + h11 * 2;
+        worst = std::max({worst, glm::length(evalVertex(o, 3, t) - glm::dvec3(0, 0, 1 + w0)),
+                          glm::length(evalVertex(o, 1, t) - glm::dvec3(1 + w1, 0, 0))});
+    }
+    EXPECT_LT(worst, 1e-12);  // rounding only
+    std::cout << "CUBICSPLINE morph: exact motion, measured deviation " << worst << "\n";
+}
+
+// Stillness and breakpoints of an exact motion come from its tracks: a CUBICSPLINE track that holds one
+// value with zero tangents between its last two keys is still there, and moves where the spline does.
+TEST(GltfLoader, ExactMotionIsStillWhereItsTracksHold) {
+    GltfWriter w;
+    const int mesh = addTetraMesh(w);
+    const int node = addNode(w, {{"name", "settle"}, {"mesh", mesh}});
+    setScene(w, {node});
+    // Keys at 0, 1, 2 s: from the origin to (1, 0, 0), then held there (zero tangents into and out of it).
+    const std::vector<float> tr = {0, 0, 0, 0, 0, 0, 1, 0, 0, /**/ 0, 0, 0, 1, 0, 0, 0, 0, 0, /**/ 0, 0, 0, 1, 0, 0, 0, 0, 0};
+    animate(w, node, "translation", "CUBICSPLINE", {0, 1, 2}, tr);
+    const Object o = loadValid(w, "settle").objects.at(0);
+    ASSERT_TRUE(o.motion);
+    EXPECT_FALSE(isStatic(o, 5, 10));
+    EXPECT_FALSE(isStatic(o, 20, 30));  // reaches into the moving first interval
+    EXPECT_TRUE(isStatic(o, 24, 40));
+    EXPECT_TRUE(isStatic(o, 50, 60));  // held after the last key
+    EXPECT_TRUE(isStatic(o, -10, 0));  // held before the first
+    std::vector<double> breaks;
+    addMotionKeyTimes(o, 0, 48, breaks);
+    EXPECT_EQ(breaks, std::vector<double>{24.0});  // strictly inside (0, 48)
 }
 
 TEST(GltfLoader, CameraAnimatedLikeSpinPanGivesTheYamlCameraPoses) {
@@ -404,7 +528,7 @@ TEST(GltfLoader, MorphWeightsAreExactDeformationKeys) {
     EXPECT_LT(glm::length(evalVertex(o, 3, 6) - glm::dvec3(0, 0, 1.25)), 1e-12);
 }
 
-TEST(GltfLoader, SkinIsSampledIntoDeformationKeysWithinTheStatedBound) {
+TEST(GltfLoader, SkinIsFollowedExactly) {
     GltfWriter w;
     // A bar of three rows (y = 0, 1, 2), bound to a hip at the origin and a knee at y = 1 that bends.
     const int pos = w.addFloats({-0.1f, 0, 0, 0.1f, 0, 0, -0.1f, 1, 0, 0.1f, 1, 0, -0.1f, 2, 0, 0.1f, 2, 0}, "VEC3", 34962);
@@ -430,10 +554,13 @@ TEST(GltfLoader, SkinIsSampledIntoDeformationKeysWithinTheStatedBound) {
     r.fps = 1.0;  // 1 s = frame 0's whole shutter
     const Object o = loadValid(w, "skin", r).objects.at(0);
     EXPECT_TRUE(o.transform.empty());
-    ASSERT_GE(o.deformation.size(), 2u);
-    // Hand value at the end: the tip (0.1, 2) turned 90 degrees about the knee (0, 1): (-1, 1.1).
-    EXPECT_LT(glm::length(evalVertex(o, 5, 1.0) - glm::dvec3(-1, 1.1, 0)), 1e-6);
-    const std::vector<glm::dvec3> rest = {{-0.1, 0, 0}, {0.1, 0, 0}, {-0.1, 1, 0}, {0.1, 1, 0}, {-0.1, 2, 0}, {0.1, 2, 0}};
+    EXPECT_TRUE(o.deformation.empty());
+    ASSERT_TRUE(o.motion);
+    // Hand value at the end: the tip (0.1, 2) turned 90 degrees about the knee (0, 1): (-1, 1.1); 1e-7 for
+    // the float-stored quaternion and positions.
+    EXPECT_LT(glm::length(evalVertex(o, 5, 1.0) - glm::dvec3(-1, 1.1, 0)), 1e-7);
+    // The float-stored rest positions, as the file holds them.
+    const std::vector<glm::dvec3> rest = {{-0.1f, 0, 0}, {0.1f, 0, 0}, {-0.1f, 1, 0}, {0.1f, 1, 0}, {-0.1f, 2, 0}, {0.1f, 2, 0}};
     double worst = 0.0;
     for (const double t : seededTimes(0, 1, 4000, 13)) {
         const glm::dquat q = glm::slerp(toQuat(bend), toQuat(bend, 4), t);
@@ -446,9 +573,9 @@ TEST(GltfLoader, SkinIsSampledIntoDeformationKeysWithinTheStatedBound) {
             worst = std::max(worst, glm::length(evalVertex(o, v, t) - truth));
         }
     }
-    // The bound: 1e-4 of the object's size (its largest distance from vertex 0: |(0.2, 2)| at rest).
-    EXPECT_LT(worst, 1e-4 * std::sqrt(4.04));
-    std::cout << "skin: " << o.deformation.size() << " deformation keys, measured deviation " << worst << "\n";
+    // 1e-12 of a bar 2 long: the same skin sum, rounded in another order.
+    EXPECT_LT(worst, 1e-12);
+    std::cout << "skin: exact motion, measured deviation " << worst << "\n";
 }
 
 TEST(GltfLoader, GlbAndBinBufferLoadLikeTheDataUri) {

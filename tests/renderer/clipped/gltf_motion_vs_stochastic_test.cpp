@@ -34,8 +34,9 @@ void animate(testing::GltfWriter& w, int node, const std::string& path, const st
 }
 
 // A flag whose corner a morph target pulls out during the shutter (exact deformation keys), a wheel
-// spinning on a car that drives and turns (resampled transform keys) and a skinned leg bending at the
-// knee (sampled deformation keys), over 1 s = 1 frame at fps 1.
+// spinning on a car that drives and turns, a skinned leg bending at the knee and a crate turning under a
+// parent stretched along y, so that its world matrix shears (all three exact motions), over 1 s = 1
+// frame at fps 1.
 testing::GltfWriter movingScene() {
     testing::GltfWriter w;
     w.doc()["materials"] = json::array(
@@ -67,10 +68,12 @@ testing::GltfWriter movingScene() {
                                     {{"name", "wheel"}, {"mesh", 1}, {"translation", {0.3, 0.2, 0}}},
                                     {{"name", "leg"}, {"mesh", 2}, {"skin", 0}},
                                     {{"name", "hip"}, {"translation", {2.5, -1.5, 0}}, {"children", {5}}},
-                                    {{"name", "knee"}, {"translation", {0, 1, 0}}}});
+                                    {{"name", "knee"}, {"translation", {0, 1, 0}}},
+                                    {{"name", "stretch"}, {"translation", {-3, 0.8, 0}}, {"scale", {1, 1.6, 1}}, {"children", {7}}},
+                                    {{"name", "crate"}, {"mesh", 1}}});
     w.doc()["skins"] = json::array({{{"joints", {4, 5}}, {"inverseBindMatrices", ibm}}});
     w.doc()["scene"] = 0;
-    w.doc()["scenes"] = json::array({{{"nodes", {0, 1, 3, 4}}}});
+    w.doc()["scenes"] = json::array({{{"nodes", {0, 1, 3, 4, 6}}}});
     animate(w, 0, "weights", {0, 1});
     animate(w, 1, "translation", {0.3f, -0.5f, 0, 1.3f, -0.2f, 0});
     std::vector<float> turn = zQuat(0);
@@ -82,6 +85,9 @@ testing::GltfWriter movingScene() {
     std::vector<float> bend = zQuat(0);
     for (const float v : zQuat(-70)) bend.push_back(v);
     animate(w, 5, "rotation", bend);
+    std::vector<float> tumble = zQuat(0);
+    for (const float v : zQuat(90)) tumble.push_back(v);
+    animate(w, 7, "rotation", tumble);
     return w;
 }
 
@@ -125,25 +131,25 @@ double meanSquaredDifference(const RenderResult& a, const RenderResult& b, const
 // independent seeds estimate the variance V of their average; an exact clipped render differs from
 // that average by V in the mean, so the ratio stays near 1 (< 1.5 allows ~5 standard errors), while a
 // wrong morph or a wheel off its path is a bias over whole edges that the ratio does not survive.
-TEST(GltfRender, MorphSkinAndResampledMotionAgreeWithTheStochasticReference) {
+TEST(GltfRender, MorphSkinShearAndExactMotionAgreeWithTheStochasticReference) {
     const auto dir = testing::freshTempDir("clipblur_gltf_vs_stochastic");
     movingScene().writeGltf(dir / "moving.gltf");
     movingScene().writeGltf(testing::validatedAssetDir() / "moving_vs_stochastic.gltf");
     std::ofstream(dir / "job.yaml") << kJob;
     const auto load = [&](const std::vector<std::string>& overrides) { return loadJob(dir / "job.yaml", overrides); };
     const RenderJob job = load({});
-    ASSERT_EQ(job.scene.objects.size(), 4u);
+    ASSERT_EQ(job.scene.objects.size(), 5u);
     EXPECT_EQ(job.scene.objects[1].deformation.size(), 2u);
-    EXPECT_GT(job.scene.objects[2].transform.size(), 2u);  // resampled
-    EXPECT_GT(job.scene.objects[3].deformation.size(), 2u);  // the skin, sampled
+    for (const std::size_t o : {2u, 3u, 4u}) {  // wheel, leg, crate: followed exactly, no keys
+        EXPECT_TRUE(job.scene.objects[o].motion) << o;
+        EXPECT_TRUE(job.scene.objects[o].transform.empty() && job.scene.objects[o].deformation.empty()) << o;
+    }
     const RenderResult clipped = renderFrame(load({"render.subframes=64"}), 0);
     const RenderResult s1 = renderFrame(load({"render.method=stochastic", "render.samples=400", "render.seed=1"}), 0);
     const RenderResult s2 = renderFrame(load({"render.method=stochastic", "render.samples=400", "render.seed=2"}), 0);
     const double variance = meanSquaredDifference(s1, s2) / 4.0;
     const double ratio = meanSquaredDifference(clipped, s1, &s2) / variance;
     RecordProperty("ratio", std::to_string(ratio));
-    RecordProperty("transform_keys", std::to_string(job.scene.objects[2].transform.size()));
-    RecordProperty("skin_keys", std::to_string(job.scene.objects[3].deformation.size()));
     EXPECT_LT(ratio, 1.5) << "variance " << variance;
     // The motion is visible: a still render differs from the moving one far beyond the noise.
     const RenderResult still = renderFrame(load({"shutter.close=0"}), 0);
