@@ -83,7 +83,9 @@ nlohmann::json sceneJson(const RenderJob& job) {
                               {{"kind", textureKind(m.texture.kind)},
                                {"color2", vec(m.texture.color2)},
                                {"scale", m.texture.scale}}},
-                             {"two_sided", m.two_sided}});
+                             {"two_sided", m.two_sided},
+                             {"unlit", m.model == ShadingModel::Unlit},
+                             {"emission", vec(m.emission)}});
     json objects = json::array();
     for (const Object& o : s.objects) objects.push_back(objectJson(o));
     return {{"source_file", job.source_file},

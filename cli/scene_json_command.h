@@ -11,7 +11,7 @@ namespace clipblur::cli {
 //   film {width, height, background}, camera {vfov, keys [{time, position, view, up}]},
 //   shutter {open, close}, frames {first, last, fps}, frame (the first), ambient, render {method,
 //   samples, seed, shadows}, lights [{type, color, intensity, direction, position}], materials
-//   [{base_color, texture {kind none|checker|stripe, color2, scale}, two_sided}], objects [{name,
+//   [{base_color, texture {kind none|checker|stripe, color2, scale}, two_sided, unlit, emission}], objects [{name,
 //   material, positions, triangles, transform [{time, translate, rotate [w, x, y, z], scale}],
 //   deformation [{time, positions}]}].
 // Times are absolute, in frames; vectors are [x, y, z]; doubles keep full precision.

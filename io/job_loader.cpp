@@ -39,7 +39,8 @@ ObjFile buildMesh(const MeshSource& src, const std::filesystem::path& base, std:
 void prepareImageTextures(const Scene& scene) {
     if (!usesImageTextures(scene)) return;
     for (const Material& m : scene.materials)
-        if (!m.image.file.empty()) ImageTextures::shared().prepare(m.image.file, m.image.loc);
+        for (const ImageTexture* image : {&m.image, &m.emission_image})
+            if (!image->file.empty()) ImageTextures::shared().prepare(image->file, image->loc);
 }
 
 // Appends the glTF scene's objects and materials; its camera unless the job has its own.

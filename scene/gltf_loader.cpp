@@ -210,7 +210,7 @@ public:
           names_(request.taken_names.begin(), request.taken_names.end()) {}
 
     GltfScene build() {
-        // A required extension changes what the file means; those ignored here only change shading.
+        // A required extension changes what the file means; only the two material extensions are read.
         for (std::size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
             const std::string& e = model_.extensionsRequired[i];
             if (e != "KHR_materials_unlit" && e != "KHR_materials_emissive_strength")
@@ -242,14 +242,11 @@ private:
             mat.base_color = {f[0], f[1], f[2]};
             mat.two_sided = m.doubleSided;
             if (m.pbrMetallicRoughness.baseColorTexture.index >= 0)
-                mat.image = baseColorImage(m.pbrMetallicRoughness.baseColorTexture, pointer("materials", i));
+                mat.image = textureImage(m.pbrMetallicRoughness.baseColorTexture,
+                                         pointer("materials", i) + "/pbrMetallicRoughness/baseColorTexture");
+            if (m.extensions.count("KHR_materials_unlit")) mat.model = ShadingModel::Unlit;
+            readEmission(m, pointer("materials", i), mat);
             out_.materials.push_back(mat);
-            if (m.extensions.count("KHR_materials_unlit"))
-                warnings_.insert("glTF KHR_materials_unlit is ignored (the shading has no unlit model)");
-            const bool emissive = std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(),
-                                              [](double v) { return v != 0.0; });
-            if (emissive || m.extensions.count("KHR_materials_emissive_strength"))
-                warnings_.insert("glTF emission is ignored (the shading has no emission)");
         }
         // The spec's default material: white, single-sided.
         default_material_ = out_.materials.size();
@@ -259,9 +256,35 @@ private:
         out_.materials.push_back(fallback);
     }
 
-    // The image file a baseColorTexture names; it multiplies baseColorFactor, read through TEXCOORD_0.
-    ImageTexture baseColorImage(const tinygltf::TextureInfo& info, const std::string& material) {
-        const std::string where = material + "/pbrMetallicRoughness/baseColorTexture";
+    // emissiveFactor times KHR_materials_emissive_strength's emissiveStrength, times emissiveTexture. An
+    // unlit material ignores them, as KHR_materials_unlit ignores every property of the lit model.
+    void readEmission(const tinygltf::Material& m, const std::string& material, Material& mat) {
+        const std::vector<double>& f = m.emissiveFactor;
+        if (f.size() != 3 || !std::all_of(f.begin(), f.end(), [](double v) { return v >= 0.0 && v <= 1.0; }))
+            reader_.fail(material + "/emissiveFactor", "must be 3 numbers in [0, 1]");
+        double strength = 1.0;
+        const auto extension = m.extensions.find("KHR_materials_emissive_strength");
+        if (extension != m.extensions.end() && extension->second.Has("emissiveStrength")) {
+            const tinygltf::Value& v = extension->second.Get("emissiveStrength");
+            strength = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+            if (!(strength >= 0.0 && strength <= kMaxCoordinate))
+                reader_.fail(material + "/extensions/KHR_materials_emissive_strength/emissiveStrength",
+                             "must be a number in [0, 1e8]");
+        }
+        const glm::dvec3 emission = glm::dvec3(f[0], f[1], f[2]) * strength;
+        if (mat.model == ShadingModel::Unlit) {
+            if (emission != glm::dvec3(0.0))
+                warnings_.insert("glTF emission of unlit materials is ignored (" + material + " and any others)");
+            return;
+        }
+        mat.emission = emission;
+        if (m.emissiveTexture.index >= 0 && emission != glm::dvec3(0.0))
+            mat.emission_image = textureImage(m.emissiveTexture, material + "/emissiveTexture");
+    }
+
+    // The image file a base colour or emissive texture names (at `where`); it multiplies its factor, read
+    // through TEXCOORD_0.
+    ImageTexture textureImage(const tinygltf::TextureInfo& info, const std::string& where) {
         if (info.texCoord != 0) reader_.fail(where, "texCoord " + std::to_string(info.texCoord) + " is not supported (TEXCOORD_0 only)");
         if (info.extensions.count("KHR_texture_transform"))
             warnings_.insert("glTF KHR_texture_transform is ignored (" + where + " and any others)");

@@ -78,11 +78,19 @@ struct ImageTexture {
     FileLoc loc;       // where the scene names it
 };
 
+// Lit: Lambert under the scene's ambient and lights, plus emission. Unlit: the base colour (times its
+// textures) whatever the lights, ambient and shadows, as glTF's KHR_materials_unlit says.
+enum class ShadingModel { Lit, Unlit };
+
 struct Material {
     glm::dvec3 base_color{0.8};
     Texture texture;
     ImageTexture image;
     bool two_sided = true;
+    ShadingModel model = ShadingModel::Lit;
+    // Linear radiance added to the lit colour (times `emission_image` when it has one); unused when unlit.
+    glm::dvec3 emission{0.0};
+    ImageTexture emission_image;
 };
 
 struct Light {

@@ -141,6 +141,31 @@ void readFrames(MapReader map, FrameRange& frames) {
     map.finish();
 }
 
+// A material's properties after its name; finishes the map.
+Material readMaterial(MapReader& m) {
+    Material mat;
+    mat.base_color = m.vec3("color", mat.base_color, 0.0, kBig, ScalarForm::Allowed);
+    mat.two_sided = m.boolean("two_sided", mat.two_sided);
+    if (const ConfigNode* tex = m.optional("texture")) {
+        MapReader t(*tex, m.keyPath("texture"));
+        mat.texture.kind = asChoice(t.required("type"), t.keyPath("type"), {"checker", "stripe"}) == 0
+                               ? Texture::Kind::Checker
+                               : Texture::Kind::Stripe;
+        mat.texture.color2 = t.vec3("color2", mat.texture.color2, 0.0, kBig, ScalarForm::Allowed);
+        mat.texture.scale = t.number("scale", mat.texture.scale, kTiny, kBig);
+        t.finish();
+    }
+    if (m.boolean("unlit", false)) mat.model = ShadingModel::Unlit;
+    if (const ConfigNode* emission = m.optional("emission")) {
+        // An unlit material shows its colour alone; emission there would be silently dropped.
+        if (mat.model == ShadingModel::Unlit)
+            throwConfigError(emission->loc, "'" + m.keyPath("emission") + "' has no effect on an unlit material");
+        mat.emission = asVec3(*emission, m.keyPath("emission"), 0.0, kBig, ScalarForm::Allowed);
+    }
+    m.finish();
+    return mat;
+}
+
 std::map<std::string, int> readMaterials(const ConfigNode* node, std::vector<Material>& materials) {
     std::map<std::string, int> by_name;
     if (node) {
@@ -152,20 +177,7 @@ std::map<std::string, int> readMaterials(const ConfigNode* node, std::vector<Mat
             const std::string name = asString(name_node, m.keyPath("name"));
             if (!by_name.emplace(name, static_cast<int>(i)).second)
                 throwConfigError(name_node.loc, "duplicate material name '" + name + "'");
-            Material mat;
-            mat.base_color = m.vec3("color", mat.base_color, 0.0, kBig, ScalarForm::Allowed);
-            mat.two_sided = m.boolean("two_sided", mat.two_sided);
-            if (const ConfigNode* tex = m.optional("texture")) {
-                MapReader t(*tex, m.keyPath("texture"));
-                mat.texture.kind = asChoice(t.required("type"), t.keyPath("type"), {"checker", "stripe"}) == 0
-                                       ? Texture::Kind::Checker
-                                       : Texture::Kind::Stripe;
-                mat.texture.color2 = t.vec3("color2", mat.texture.color2, 0.0, kBig, ScalarForm::Allowed);
-                mat.texture.scale = t.number("scale", mat.texture.scale, kTiny, kBig);
-                t.finish();
-            }
-            m.finish();
-            materials.push_back(mat);
+            materials.push_back(readMaterial(m));
         }
     }
     if (materials.empty()) materials.push_back(Material{});

@@ -34,7 +34,7 @@ glm::dvec3 albedo(const Material& material, const glm::dvec3& p) {
 
 bool usesImageTextures(const Scene& scene) {
     for (const Material& m : scene.materials)
-        if (!m.image.file.empty()) return true;
+        if (!m.image.file.empty() || !m.emission_image.file.empty()) return true;
     return false;
 }
 
@@ -57,14 +57,18 @@ glm::dvec3 lightIrradiance(const Light& light, const glm::dvec3& position, const
 
 Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows, FragmentShading fragments)
     : scene_(motion.scene()), motion_(motion), shadows_(shadows), fragments_(fragments),
-      static_world_(scene_.objects.size()), images_(scene_.materials.size(), nullptr) {
+      static_world_(scene_.objects.size()), images_(scene_.materials.size(), nullptr),
+      emission_images_(scene_.materials.size(), nullptr) {
     if (usesImageTextures(scene_)) {
         ImageTextures& textures = ImageTextures::shared();
+        const auto prepared = [&](const ImageTexture& image) -> const ImageTextures::Image* {
+            if (image.file.empty()) return nullptr;
+            textures.prepare(image.file, FileLoc{});
+            return textures.find(image.file);
+        };
         for (std::size_t m = 0; m < scene_.materials.size(); ++m) {
-            const std::string& file = scene_.materials[m].image.file;
-            if (file.empty()) continue;
-            textures.prepare(file, FileLoc{});
-            images_[m] = textures.find(file);
+            images_[m] = prepared(scene_.materials[m].image);
+            emission_images_[m] = prepared(scene_.materials[m].emission_image);
         }
     }
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
@@ -164,18 +168,31 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const glm::dvec3& eye, long 
 glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surface, const glm::dvec3& eye,
                          long long* shadow_rays) const {
     const Object& object = scene_.objects[static_cast<std::size_t>(point.object)];
-    const Material& material = scene_.materials[static_cast<std::size_t>(object.material)];
-    glm::dvec3 n = surface.normal;
-    glm::dvec3 lit = surface.shading_normal == glm::dvec3(0.0) ? n : surface.shading_normal;
-    if (glm::dot(n, eye - surface.position) < 0.0) {
+    const std::size_t m = static_cast<std::size_t>(object.material);
+    const Material& material = scene_.materials[m];
+    FacingNormals facing{surface.normal, surface.shading_normal == glm::dvec3(0.0) ? surface.normal : surface.shading_normal};
+    if (glm::dot(facing.face, eye - surface.position) < 0.0) {
         if (!material.two_sided) return glm::dvec3(0.0);
-        n = -n;
-        lit = -lit;
+        facing.face = -facing.face;
+        facing.lit = -facing.lit;
     }
+    const ImageTextures::Image* image = images_[m];
+    glm::dvec3 colour = albedo(material, surface.object_position);
+    if (image) colour = colour * ImageTextures::shared().lookup(*image, surface.uv, surface.footprint);
+    if (material.model == ShadingModel::Unlit) return colour;
+    colour = colour * lightArriving(point, surface, facing, shadow_rays);
+    const ImageTextures::Image* emission_image = emission_images_[m];
+    if (emission_image)
+        return colour + material.emission * ImageTextures::shared().lookup(*emission_image, surface.uv, surface.footprint);
+    return colour + material.emission;
+}
+
+glm::dvec3 Shader::lightArriving(const SurfacePoint& point, const SurfaceGeometry& surface, const FacingNormals& facing,
+                                 long long* shadow_rays) const {
     glm::dvec3 light_sum = scene_.ambient;
     for (const Light& light : scene_.lights) {
         glm::dvec3 to_light;
-        const glm::dvec3 e = lightIrradiance(light, surface.position, lit, &to_light);
+        const glm::dvec3 e = lightIrradiance(light, surface.position, facing.lit, &to_light);
         if (e == glm::dvec3(0.0)) continue;
         if (shadows_) {
             // Shadow rays start slightly off the surface: Embree intersects in float, so the hit point is
@@ -183,7 +200,7 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surfa
             // shadows.
             const double offset = 1e-4 * std::max({1.0, std::fabs(surface.position.x), std::fabs(surface.position.y),
                                                    std::fabs(surface.position.z)});
-            const glm::dvec3 origin = surface.position + offset * n;
+            const glm::dvec3 origin = surface.position + offset * facing.face;
             const bool point_light = light.kind == Light::Kind::Point;
             const glm::dvec3 dir = point_light ? light.position - origin : to_light;
             const double max_distance = point_light ? 1.0 - 1e-6 : std::numeric_limits<double>::infinity();
@@ -192,11 +209,7 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surfa
         }
         light_sum += e;
     }
-    const ImageTextures::Image* image = images_[static_cast<std::size_t>(object.material)];
-    if (image)
-        return albedo(material, surface.object_position) *
-               ImageTextures::shared().lookup(*image, surface.uv, surface.footprint) * light_sum;
-    return albedo(material, surface.object_position) * light_sum;
+    return light_sum;
 }
 
 }  // namespace clipblur

@@ -37,8 +37,10 @@ struct SurfaceGeometry {
 
 
 // Lambert shading: albedo * (ambient + sum over lights of intensity * color * max(0, n.l)), point lights
-// divided by the squared distance. Albedo is the material's base colour or its checker/stripe texture
-// evaluated at the rest-mesh position, so the pattern moves (and deforms) with the object.
+// divided by the squared distance, plus the material's emission (times its emission image). Albedo is the
+// material's base colour or its checker/stripe texture evaluated at the rest-mesh position, so the pattern
+// moves (and deforms) with the object, times its image texture. Unlit materials are their albedo alone:
+// no ambient, lights, shadow rays or emission.
 //
 // Faces: the front side is the one (v1-v0) x (v2-v0) points to. Two-sided materials flip the normal
 // toward the eye. One-sided materials shade back faces black rather than culling them: a back face
@@ -73,18 +75,28 @@ public:
     const Scene& scene() const { return scene_; }
 
 private:
+    // The face normal (toward the eye) that shadow rays leave along and the normal that lights the point.
+    struct FacingNormals {
+        glm::dvec3 face;
+        glm::dvec3 lit;
+    };
+    // Ambient plus every light that reaches the point (shadow rays when the shader has a scene for them).
+    glm::dvec3 lightArriving(const SurfacePoint& point, const SurfaceGeometry& surface, const FacingNormals& facing,
+                             long long* shadow_rays) const;
+
     const Scene& scene_;
     const FrameMotion& motion_;
     const EmbreeScene* shadows_;
     FragmentShading fragments_;
     std::vector<std::vector<glm::dvec3>> static_world_;  // per object; empty when the object moves
     std::vector<const ImageTextures::Image*> images_;    // per material; null without an image texture
+    std::vector<const ImageTextures::Image*> emission_images_;  // per material; null without one
 };
 
 // Base colour or texture at an object-space point (no lighting); image textures are not included.
 glm::dvec3 albedo(const Material& material, const glm::dvec3& object_position);
 
-// True when some material of the scene reads an image.
+// True when some material of the scene reads an image (base colour or emission).
 bool usesImageTextures(const Scene& scene);
 
 // Light arriving at `position` with unit normal `normal` from one light (no shadowing): intensity *

@@ -110,9 +110,14 @@ def check_supported(scene):
     stays (0.0133 against 0.0101 and 0.0029), and clipblur's accumulation method (128 still renders)
     agrees with its stochastic one (0.0023) but not with Cycles (0.0135): the bias is Cycles'.
     A shutter curve is refused too: Blender's own curve is a 256-entry table whose CDF this peer already
-    corrects for a box (the shutter fix above), and nothing here maps clipblur's curve onto it."""
+    corrects for a box (the shutter fix above), and nothing here maps clipblur's curve onto it.
+    Unlit and emissive materials are refused: this peer's node trees were never checked against them (no
+    Blender on the machine that added them)."""
     if scene["shutter"].get("curve"):
         raise RuntimeError("a shutter curve is not supported by the Cycles peer (a box shutter only)")
+    for i, m in enumerate(scene["materials"]):
+        if m.get("unlit") or any(c != 0.0 for c in m.get("emission", [0.0])):
+            raise RuntimeError(f"material {i}: unlit and emissive materials are not supported by the Cycles peer")
     for o in scene["objects"]:
         if not o["deformation"]:
             continue

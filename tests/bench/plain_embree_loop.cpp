@@ -103,17 +103,20 @@ glm::dvec3 shadeHit(const Scene& scene, const EmbreeScene& embree, const RTCRayH
     const double u = rh.hit.u, v = rh.hit.v;
     const glm::dvec3 object_position = (1.0 - u - v) * rest[tri[0]] + u * rest[tri[1]] + v * rest[tri[2]];
     glm::dvec3 light = scene.ambient;
-    if (!scene.lights.empty()) {
+    const bool lit = material.model == ShadingModel::Lit;
+    // The back-face test only where something but ambient light is shaded (the loop's original shortcut).
+    if (!scene.lights.empty() || !lit || material.emission != glm::dvec3(0.0)) {
         glm::dvec3 n = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
         const glm::dvec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
         if (glm::dot(n, dir) > 0.0) {
             if (!material.two_sided) return glm::dvec3(0.0);
             n = -n;
         }
+        if (!lit) return albedo(material, object_position);
         const glm::dvec3 hit = glm::dvec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z) + double(rh.ray.tfar) * dir;
         for (const Light& l : scene.lights) light += lightIrradiance(l, hit, n);
     }
-    return albedo(material, object_position) * light;
+    return albedo(material, object_position) * light + material.emission;
 }
 
 // The shutter time whose share of the shutter curve's integral is u: bisection on the trapezoid sums,

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "io/job_loader.h"
+#include "renderer/render.h"
 #include "support/cli_harness.h"
 #include "support/gltf_writer.h"
 
@@ -137,6 +138,67 @@ TEST(GltfJob, CliExitCodesAndARender) {
     const std::string out = testing::captureShell(bin + " validate " + bad.string() + " 2>&1");
     EXPECT_NE(out.find("shot.glb: not a valid glTF file"), std::string::npos) << out;
     EXPECT_NE(out.find("job.yaml:3:8"), std::string::npos) << out;
+}
+
+namespace {
+
+// Two quads in the z = 0 plane facing -z: an unlit one (x in [-2, -0.5]) and an emissive one with
+// emissiveStrength 3 (x in [0.5, 2]).
+GltfWriter unlitAndEmissivePanels() {
+    GltfWriter w;
+    const int pos = w.addFloats({-2, -1, 0, -0.5, -1, 0, -0.5, 1, 0, -2, 1, 0, 0.5, -1, 0, 2, -1, 0, 2, 1, 0, 0.5, 1, 0},
+                                "VEC3", 34962);
+    // (v3 - v0) x (v1 - v0) points to -z: the front faces the camera at z = -5.
+    const int left = w.addIndices({0, 3, 1, 1, 3, 2}, 5123);
+    const int right = w.addIndices({4, 7, 5, 5, 7, 6}, 5123);
+    w.doc()["extensionsUsed"] = {"KHR_materials_unlit", "KHR_materials_emissive_strength"};
+    w.doc()["materials"] = json::array(
+        {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1}}}}, {"extensions", {{"KHR_materials_unlit", json::object()}}}},
+         {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}},
+          {"emissiveFactor", {1, 0.5, 0.25}},
+          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3}}}}}}});
+    w.doc()["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", pos}}}, {"indices", left}, {"material", 0}},
+                                                                  {{"attributes", {{"POSITION", pos}}}, {"indices", right}, {"material", 1}}})}}});
+    w.doc()["nodes"] = json::array({{{"name", "panels"}, {"mesh", 0}}});
+    w.doc()["scene"] = 0;
+    w.doc()["scenes"] = json::array({{{"nodes", {0}}}});
+    return w;
+}
+
+}  // namespace
+
+// A job over a glTF scene with KHR_materials_unlit and KHR_materials_emissive_strength renders them through
+// the job's lights: every fully covered pixel is the unlit panel's base colour or the emissive panel's
+// 0.5 x (ambient 0.1 + 1 x cos 0) + 3 x (1, 0.5, 0.25), clipped and stochastic (1e-6: float channels).
+TEST(GltfJob, UnlitAndEmissiveMaterialsRenderThroughTheJobsLights) {
+    const auto dir = testing::freshTempDir("clipblur_gltf_job_emissive");
+    unlitAndEmissivePanels().writeGlb(dir / "panels.glb");
+    unlitAndEmissivePanels().writeGlb(testing::validatedAssetDir() / "job_unlit_emissive.glb");
+    std::ofstream(dir / "job.yaml") << "version: 1\n"
+                                       "film: {width: 64, height: 36}\n"
+                                       "scene: panels.glb\n"
+                                       "camera: {keys: [{position: [0, 0, -5], view: [0, 0, 1]}]}\n"
+                                       "lights: [{type: directional, direction: [0, 0, 1]}]\n"
+                                       "ambient: 0.1\n"
+                                       "render: {samples: 16}\n";
+    const glm::dvec3 unlit(0.2, 0.4, 0.6);
+    const glm::dvec3 emissive = 0.5 * (0.1 + 1.0) + 3.0 * glm::dvec3(1, 0.5, 0.25);
+    for (const char* method : {"clipped", "stochastic"}) {
+        const RenderJob job = loadJob(dir / "job.yaml", {std::string("render.method=") + method});
+        EXPECT_TRUE(job.warnings.empty()) << job.warnings.front();
+        const RenderResult r = renderFrame(job, 0);
+        int unlit_pixels = 0, emissive_pixels = 0;
+        const auto& a = r.image.find("A")->values;
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            if (a[i] < 1.0f) continue;
+            const glm::dvec3 c(r.image.find("R")->values[i], r.image.find("G")->values[i], r.image.find("B")->values[i]);
+            if (glm::length(c - unlit) < 1e-6) ++unlit_pixels;
+            else if (glm::length(c - emissive) < 1e-6) ++emissive_pixels;
+            else ADD_FAILURE() << method << ": pixel " << i << " is (" << c.r << ", " << c.g << ", " << c.b << ")";
+        }
+        EXPECT_GT(unlit_pixels, 50) << method;
+        EXPECT_GT(emissive_pixels, 50) << method;
+    }
 }
 
 }  // namespace clipblur

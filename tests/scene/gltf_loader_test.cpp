@@ -601,7 +601,7 @@ TEST(GltfLoader, GlbAndBinBufferLoadLikeTheDataUri) {
     EXPECT_EQ(uri.objects[1].name, "a#2");
 }
 
-TEST(GltfLoader, PrimitiveModesAndIgnoredMaterialFeaturesAreReported) {
+TEST(GltfLoader, PrimitiveModesAreReadOrReported) {
     GltfWriter w;
     std::vector<float> p;
     for (const glm::dvec3& v : kTetra) p.insert(p.end(), {float(v.x), float(v.y), float(v.z)});
@@ -627,7 +627,7 @@ TEST(GltfLoader, PrimitiveModesAndIgnoredMaterialFeaturesAreReported) {
         return std::any_of(s.warnings.begin(), s.warnings.end(), [&](const std::string& m) { return m.find(what) != std::string::npos; });
     };
     EXPECT_TRUE(has("points and lines are skipped (/meshes/0/primitives/2"));
-    EXPECT_TRUE(has("emission is ignored"));
+    EXPECT_FALSE(has("emission"));
 }
 
 // NORMAL and TEXCOORD_0 become corner attributes (normals by the inverse transpose of the folded node
@@ -696,6 +696,54 @@ TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
     }
 }
 
+// KHR_materials_unlit makes a material unlit (its base colour and texture kept, its emission ignored with
+// a warning); emissiveFactor times KHR_materials_emissive_strength's emissiveStrength (1 when absent)
+// is the emission, emissiveTexture its image beside the .gltf. Both extensions may be required.
+TEST(GltfLoader, UnlitAndEmissiveMaterialsAreRead) {
+    const auto folder = testing::validatedAssetDir();
+    testing::writeRgb8Png(folder / "emissive_glow.png", 2, 1, {255, 128, 0, 0, 64, 255});
+    GltfWriter w;
+    const int pos = w.addFloats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 34962);
+    const int uv = w.addFloats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 34962);
+    const int idx = w.addIndices({0, 2, 1, 0, 3, 2}, 5123);
+    w.doc()["extensionsUsed"] = {"KHR_materials_unlit", "KHR_materials_emissive_strength"};
+    w.doc()["extensionsRequired"] = {"KHR_materials_unlit", "KHR_materials_emissive_strength"};
+    w.doc()["images"] = json::array({{{"uri", "emissive_glow.png"}}});
+    w.doc()["textures"] = json::array({{{"source", 0}}});
+    w.doc()["materials"] = json::array(
+        {{{"name", "flat"},
+          {"pbrMetallicRoughness", {{"baseColorFactor", {0.25, 0.5, 0.75, 1}}, {"baseColorTexture", {{"index", 0}}}}},
+          {"extensions", {{"KHR_materials_unlit", json::object()}}}},
+         {{"name", "lamp"},
+          {"emissiveFactor", {1, 0.5, 0.25}},
+          {"emissiveTexture", {{"index", 0}}},
+          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}},
+         {{"name", "ember"}, {"emissiveFactor", {0.5, 0.125, 0}}},
+         {{"name", "flat_glow"}, {"emissiveFactor", {1, 1, 1}}, {"extensions", {{"KHR_materials_unlit", json::object()}}}}});
+    json primitives = json::array();
+    for (int m = 0; m < 4; ++m)
+        primitives.push_back({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}, {"indices", idx}, {"material", m}});
+    w.doc()["meshes"] = json::array({{{"primitives", primitives}}});
+    setScene(w, {addNode(w, {{"name", "panel"}, {"mesh", 0}})});
+    const GltfScene s = loadValid(w, "unlit_emissive");
+    ASSERT_EQ(s.objects.size(), 4u);
+    const auto material = [&](int object) { return s.materials.at(static_cast<std::size_t>(s.objects.at(object).material)); };
+    EXPECT_EQ(material(0).model, ShadingModel::Unlit);
+    EXPECT_EQ(material(0).base_color, glm::dvec3(0.25, 0.5, 0.75));
+    EXPECT_EQ(std::filesystem::path(material(0).image.file), folder / "emissive_glow.png");
+    EXPECT_EQ(material(0).emission, glm::dvec3(0.0));
+    EXPECT_EQ(material(1).model, ShadingModel::Lit);
+    EXPECT_EQ(material(1).emission, glm::dvec3(4, 2, 1));
+    EXPECT_EQ(std::filesystem::path(material(1).emission_image.file), folder / "emissive_glow.png");
+    EXPECT_TRUE(material(1).image.file.empty());
+    EXPECT_EQ(material(2).emission, glm::dvec3(0.5, 0.125, 0));
+    EXPECT_TRUE(material(2).emission_image.file.empty());
+    EXPECT_EQ(material(3).model, ShadingModel::Unlit);
+    EXPECT_EQ(material(3).emission, glm::dvec3(0.0));
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("emission of unlit materials is ignored (/materials/3"), std::string::npos) << s.warnings[0];
+}
+
 namespace {
 
 struct BadCase {
@@ -703,6 +751,12 @@ struct BadCase {
     std::function<void(GltfWriter&)> spoil;
     std::string expected;  // after "<name>.gltf: "
 };
+
+// Gives the first primitive a material, the file's only one.
+void useMaterial(GltfWriter& w, json material) {
+    w.doc()["materials"] = json::array({std::move(material)});
+    w.doc()["meshes"][0]["primitives"][0]["material"] = 0;
+}
 
 // A valid animated scene, spoiled by each case.
 GltfWriter goodScene() {
@@ -758,6 +812,19 @@ TEST(GltfLoader, BadFilesAreRefusedWithTheFileAndTheJsonPointer) {
          "/extensionsRequired/0: extension KHR_draco_mesh_compression is not supported"},
         {"interp", [](GltfWriter& w) { w.doc()["animations"][0]["samplers"][0]["interpolation"] = "SMOOTH"; },
          "/animations/0: unknown interpolation 'SMOOTH'"},
+        {"emissive_factor", [](GltfWriter& w) { useMaterial(w, {{"emissiveFactor", {0.5, 2, 0}}}); },
+         "/materials/0/emissiveFactor: must be 3 numbers in [0, 1]"},
+        {"emissive_strength", [](GltfWriter& w) {
+             useMaterial(w, {{"emissiveFactor", {1, 1, 1}},
+                             {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -2}}}}}});
+         },
+         "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength: must be a number in [0, 1e8]"},
+        {"emissive_strength_text", [](GltfWriter& w) {
+             useMaterial(w, {{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", "bright"}}}}}});
+         },
+         "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength: must be a number in [0, 1e8]"},
+        {"emissive_texture", [](GltfWriter& w) { useMaterial(w, {{"emissiveFactor", {1, 1, 1}}, {"emissiveTexture", {{"index", 3}}}}); },
+         "/materials/0/emissiveTexture: texture 3 does not exist"},
     };
     const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_gltf_bad";
     std::filesystem::create_directories(dir);

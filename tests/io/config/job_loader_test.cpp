@@ -33,6 +33,8 @@ frames: {first: 3, last: 7, fps: 30}
 materials:
   - {name: red, color: [1, 0, 0], two_sided: false}
   - {name: check, color: 0.9, texture: {type: checker, color2: 0.1, scale: 0.5}}
+  - {name: lamp, color: 0.2, emission: [2, 1, 0.5]}
+  - {name: sign, color: [0, 1, 0], unlit: true}
 lights:
   - {type: directional, direction: [0, -1, 0], intensity: 2}
   - {type: point, position: [1, 2, 3], color: [1, 0.5, 0.25]}
@@ -82,7 +84,9 @@ const char* kJsonJob = R"({
   "frames": {"first": 3, "last": 7, "fps": 30},
   "materials": [
     {"name": "red", "color": [1, 0, 0], "two_sided": false},
-    {"name": "check", "color": 0.9, "texture": {"type": "checker", "color2": 0.1, "scale": 0.5}}
+    {"name": "check", "color": 0.9, "texture": {"type": "checker", "color2": 0.1, "scale": 0.5}},
+    {"name": "lamp", "color": 0.2, "emission": [2, 1, 0.5]},
+    {"name": "sign", "color": [0, 1, 0], "unlit": true}
   ],
   "lights": [
     {"type": "directional", "direction": [0, -1, 0], "intensity": 2},
@@ -146,11 +150,17 @@ TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
         EXPECT_EQ(job->frames.first, 3);
         EXPECT_EQ(job->frames.last, 7);
         EXPECT_EQ(job->frames.fps, 30.0);
-        ASSERT_EQ(s.materials.size(), 2u);
+        ASSERT_EQ(s.materials.size(), 4u);
         EXPECT_FALSE(s.materials[0].two_sided);
+        EXPECT_EQ(s.materials[0].model, ShadingModel::Lit);  // the defaults: lit, no emission
+        expectVec(s.materials[0].emission, glm::dvec3(0.0));
         EXPECT_EQ(s.materials[1].texture.kind, Texture::Kind::Checker);
         EXPECT_EQ(s.materials[1].texture.scale, 0.5);
         expectVec(s.materials[1].base_color, glm::dvec3(0.9));
+        expectVec(s.materials[2].emission, {2, 1, 0.5});
+        EXPECT_EQ(s.materials[2].model, ShadingModel::Lit);
+        EXPECT_EQ(s.materials[3].model, ShadingModel::Unlit);
+        expectVec(s.materials[3].base_color, {0, 1, 0});
         ASSERT_EQ(s.lights.size(), 2u);
         EXPECT_EQ(s.lights[0].kind, Light::Kind::Directional);
         EXPECT_EQ(s.lights[0].intensity, 2.0);
@@ -316,6 +326,11 @@ INSTANTIATE_TEST_SUITE_P(
                   ExitCode::Config, "dwaa", "corrupt Cryptomatte"},
         ErrorCase{"CryptomatteLayerName", "e.yaml", minimalYaml("render: {method: stochastic}\noutput: {cryptomatte: {name: a.b}}\n"),
                   ExitCode::Config, "a.b", "A-Z"},
+        ErrorCase{"MaterialUnknownKey", "e.yaml", minimalYaml("materials: [{name: m, emisson: 1}]\n"), ExitCode::Config, "emisson", "unknown key 'materials[0].emisson'"},
+        ErrorCase{"NegativeEmission", "e.yaml", minimalYaml("materials: [{name: m, emission: [1, -0.5, 0]}]\n"), ExitCode::Config, "-0.5", "'materials[0].emission[1]' must be in [0,"},
+        ErrorCase{"EmissionNotANumber", "e.yaml", minimalYaml("materials: [{name: m, emission: bright}]\n"), ExitCode::Config, "bright", "'materials[0].emission'"},
+        ErrorCase{"UnlitNotABool", "e.yaml", minimalYaml("materials: [{name: m, unlit: 1}]\n"), ExitCode::Config, "1}", "true or false"},
+        ErrorCase{"EmissionOnUnlit", "e.yaml", minimalYaml("materials:\n  - {name: m, unlit: true, emission: 2}\n"), ExitCode::Config, "2}", "'materials[0].emission' has no effect on an unlit material"},
         ErrorCase{"LightKeyOfOtherType", "e.yaml", minimalYaml("lights: [{type: point, position: [0, 0, 0], direction: [0, 0, 1]}]\n"), ExitCode::Config, "direction", "unknown key 'lights[0].direction'"}),
     [](const auto& info) { return std::string(info.param.name); });
 
@@ -334,6 +349,8 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"Syntax", "e.json", kJsonHead + " \"objects\": @}", ExitCode::Config, "@", "JSON syntax error"},
         ErrorCase{"UnsortedCameraKeys", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"time\": 2},\n   {\"time\": 1}]},\n" + kJsonBox + "}", ExitCode::Scene, "{\"time\": 1}", "sorted"},
         ErrorCase{"ViewParallelToUp", "e.json", "{\"version\": 1,\n \"camera\": {\"keys\": [{\"view\": [0, -1, 0]}]},\n" + kJsonBox + "}", ExitCode::Config, "{\"view\"", "parallel"},
+        ErrorCase{"EmissionOnUnlit", "e.json", kJsonHead + " \"materials\": [{\"name\": \"m\", \"emission\": [0, 1, 0],\n   \"unlit\": true}],\n" + kJsonBox + "}",
+                  ExitCode::Config, "[0, 1, 0]", "has no effect on an unlit material"},
         ErrorCase{"BoolAsString", "e.json", kJsonHead + " \"render\": {\"shadows\": \"true\"},\n" + kJsonBox + "}", ExitCode::Config, "\"true\"", "true or false"}),
     [](const auto& info) { return std::string(info.param.name); });
 
