@@ -9,23 +9,16 @@
 #include "renderer/clipped/shutter_segments.h"
 #include "renderer/render.h"
 #include "scene/primitives.h"
+#include "support/render_compare.h"
 
 namespace clipblur {
 
 namespace {
 
-const std::vector<float>& channel(const RenderResult& r, const char* name) { return r.image.find(name)->values; }
+using testing::averaged;
+using testing::meanSquaredDifference;
 
-double meanSquaredDifference(const RenderResult& a, const RenderResult& b) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (const char* c : {"R", "G", "B"}) {
-        const auto& x = channel(a, c);
-        const auto& y = channel(b, c);
-        for (std::size_t i = 0; i < x.size(); ++i, ++n) sum += (double(x[i]) - y[i]) * (double(x[i]) - y[i]);
-    }
-    return sum / double(n);
-}
+const std::vector<float>& channel(const RenderResult& r, const char* name) { return r.image.find(name)->values; }
 
 double maxAbsDifference(const RenderResult& a, const RenderResult& b) {
     double worst = 0.0;
@@ -35,14 +28,6 @@ double maxAbsDifference(const RenderResult& a, const RenderResult& b) {
         for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(double(x[i]) - y[i]));
     }
     return worst;
-}
-
-RenderResult averaged(const RenderResult& a, const RenderResult& b) {
-    RenderResult m = a;
-    for (std::size_t c = 0; c < m.image.channels.size(); ++c)
-        for (std::size_t i = 0; i < m.image.channels[c].values.size(); ++i)
-            m.image.channels[c].values[i] = 0.5f * (a.image.channels[c].values[i] + b.image.channels[c].values[i]);
-    return m;
 }
 
 }  // namespace

@@ -13,12 +13,14 @@
 #include "renderer/render.h"
 #include "support/cli_harness.h"
 #include "support/gltf_writer.h"
+#include "support/render_compare.h"
 
 namespace clipblur {
 
 namespace {
 
 using nlohmann::json;
+using testing::meanSquaredDifference;
 
 std::vector<float> zQuat(double degrees) {
     const glm::dquat q = glm::angleAxis(glm::radians(degrees), glm::dvec3(0, 0, 1));
@@ -108,22 +110,6 @@ objects:
     transform: [{translate: [0, 0, 3], rotate: {axis: [1, 0, 0], angle_deg: -90}}]
 render: {tile_size: 16, audit: true}
 )";
-
-const std::vector<float>& channel(const RenderResult& r, const char* name) { return r.image.find(name)->values; }
-
-double meanSquaredDifference(const RenderResult& a, const RenderResult& b, const RenderResult* c = nullptr) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (const char* name : {"R", "G", "B"}) {
-        const auto& x = channel(a, name);
-        const auto& y = channel(b, name);
-        for (std::size_t i = 0; i < x.size(); ++i, ++n) {
-            const double ref = c ? 0.5 * (double(y[i]) + channel(*c, name)[i]) : y[i];
-            sum += (x[i] - ref) * (x[i] - ref);
-        }
-    }
-    return sum / double(n);
-}
 
 }  // namespace
 

@@ -12,10 +12,13 @@
 #include "renderer/render.h"
 #include "scene/pixel_bounds.h"
 #include "support/cli_harness.h"
+#include "support/render_compare.h"
 
 namespace clipblur {
 
 namespace {
+
+using testing::meanSquaredDifference;
 
 namespace fs = std::filesystem;
 
@@ -42,24 +45,6 @@ std::vector<bool> coveredBy(const RenderResult& r, const std::vector<int>& objec
         for (const ObjectShare& s : r.objects.pixels[p])
             for (const int o : objects) mask[p] = mask[p] || (s.object == o && s.coverage > 0.0);
     return mask;
-}
-
-// Mean over the masked pixels' R, G, B of (a - ref)^2, ref the mean of `b` and `c` when `c` is given.
-double meanSquaredDifference(const RenderResult& a, const RenderResult& b, const RenderResult* c,
-                             const std::vector<bool>& mask) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (const char* name : {"R", "G", "B"}) {
-        const auto& x = a.image.find(name)->values;
-        const auto& y = b.image.find(name)->values;
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            if (!mask.empty() && !mask[i]) continue;
-            const double ref = c ? 0.5 * (double(y[i]) + c->image.find(name)->values[i]) : y[i];
-            sum += (x[i] - ref) * (x[i] - ref);
-            ++n;
-        }
-    }
-    return n ? sum / double(n) : 0.0;
 }
 
 // Two stochastic renders with independent seeds and the statistic of

@@ -9,6 +9,7 @@
 
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
+#include "support/render_compare.h"
 #include "support/texture_files.h"
 
 namespace clipblur {
@@ -197,6 +198,9 @@ TEST(Emission, AddsToLambertShadingInEveryMethod) {
 
 namespace {
 
+using testing::averaged;
+using testing::meanSquaredDifference;
+
 // Three surfaces for the comparisons with the stochastic method: a lit wall filling the film (depth 6), an
 // emissive quad (depth 3) moving 10 px right and 4 down, and an unlit quad (depth 2) in front of it
 // moving 8 px left and 2 down, under ambient and a directional light (constant on translating flat faces,
@@ -222,25 +226,6 @@ RenderJob movingEmissiveJob() {
     nearest.material = 2;
     job.scene.objects = {back, front, nearest};
     return job;
-}
-
-double meanSquaredDifference(const RenderResult& a, const RenderResult& b) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (const char* c : {"R", "G", "B"}) {
-        const auto& x = a.image.find(c)->values;
-        const auto& y = b.image.find(c)->values;
-        for (std::size_t i = 0; i < x.size(); ++i, ++n) sum += (double(x[i]) - y[i]) * (double(x[i]) - y[i]);
-    }
-    return sum / double(n);
-}
-
-RenderResult averaged(const RenderResult& a, const RenderResult& b) {
-    RenderResult m = a;
-    for (std::size_t c = 0; c < m.image.channels.size(); ++c)
-        for (std::size_t i = 0; i < m.image.channels[c].values.size(); ++i)
-            m.image.channels[c].values[i] = 0.5f * (a.image.channels[c].values[i] + b.image.channels[c].values[i]);
-    return m;
 }
 
 }  // namespace
