@@ -12,8 +12,8 @@ namespace clipblur {
 
 ReferenceImage readReference(const std::string& path, int width, int height) {
     ImageFile file;
-    if (const std::string why = imageModule().read(path, ImageRead::Header, file); !why.empty())
-        throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + why);
+    const std::string why = imageModule().read(path, ImageRead::HeaderAndPixels, file);
+    if (file.format.empty()) throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + why);
     if (file.full_width != width || file.full_height != height)
         throw Error(ExitCode::Config, "reference image " + path + " is " + std::to_string(file.full_width) + "x" +
                                          std::to_string(file.full_height) + ", the render is " +
@@ -28,8 +28,7 @@ ReferenceImage readReference(const std::string& path, int width, int height) {
     }
     if (std::find(channel.begin(), channel.end(), -1) != channel.end())
         throw Error(ExitCode::Config, "reference image " + path + " lacks an R, G or B channel");
-    if (const std::string why = imageModule().read(path, ImageRead::HeaderAndPixels, file); !why.empty())
-        throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + why);
+    if (!why.empty()) throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + why);
     // Pixels outside the reference's data window are black (the EXR convention).
     ReferenceImage ref{width, height, std::vector<float>(static_cast<std::size_t>(width) * height * 3, 0.0f)};
     const PixelBounds w = file.window;

@@ -13,7 +13,8 @@ class ImageTextures;
 // main(); so the executable does not link it, and only a process that reads or writes an image loads
 // the module, on first use. Built by the same compiler from the same headers as the executable.
 struct ImageModule {
-    // Reads `file`'s first subimage into `out`; empty on success, else why not.
+    // Reads `file`'s first subimage into `out`; empty on success, else why not. When the header reads
+    // but the pixels do not (a truncated file), `out` holds the header (its `format` is set).
     std::string (*read)(const std::string& file, ImageRead what, ImageFile& out);
     // Writes `image` to `file`, the format following its extension; empty on success, else why not.
     std::string (*write)(const std::string& file, const ImageFile& image);

@@ -89,6 +89,7 @@ ImageFile describe(const OIIO::ImageInput& in) {
 
 std::string readImage(const std::string& file, ImageRead what, ImageFile& out) {
     auto in = OIIO::ImageInput::open(file);
+    out = ImageFile{};
     if (!in) return OIIO::geterror();
     out = describe(*in);
     if (what == ImageRead::Header) return {};
