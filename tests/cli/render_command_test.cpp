@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -26,17 +27,10 @@ std::string renderCommand(const fs::path& dir, const std::string& extra) {
            " --progress none " + extra + " > " + (dir / "stdout.txt").string() + " 2> " + (dir / "stderr.txt").string();
 }
 
-fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
 }  // namespace
 
 TEST(RenderCommand, RendersFramesThroughAPattern) {
-    const fs::path dir = freshDir("clipblur_cli_render");
+    const fs::path dir = testing::freshTempDir("clipblur_cli_render");
     const std::string out = (dir / "shot.####.exr").string();
     ASSERT_EQ(run(renderCommand(dir, "--frames 3-4 --threads 1 --out " + out)), 0);
     for (const char* name : {"shot.0003.exr", "shot.0004.exr", "shot.0003.stats.json", "shot.0004.stats.json"})
@@ -49,13 +43,13 @@ TEST(RenderCommand, RendersFramesThroughAPattern) {
 }
 
 TEST(RenderCommand, SeveralFramesWithoutAPatternIsAUsageError) {
-    const fs::path dir = freshDir("clipblur_cli_nopattern");
+    const fs::path dir = testing::freshTempDir("clipblur_cli_nopattern");
     EXPECT_EQ(run(renderCommand(dir, "--frames 0-2 --out " + (dir / "one.exr").string())), 2);
     EXPECT_FALSE(fs::exists(dir / "one.exr"));
 }
 
 TEST(RenderCommand, InterruptStopsWithoutOutputAndExits130) {
-    const fs::path dir = freshDir("clipblur_cli_interrupt");
+    const fs::path dir = testing::freshTempDir("clipblur_cli_interrupt");
     const fs::path out = dir / "slow.exr";
     const fs::path log = dir / "progress.txt";
     // Big enough to still be rendering long after its first tile (640x360, 256 samples). The signal is
@@ -77,9 +71,7 @@ namespace clipblur {
 // `render --reference`: a float render compared with itself has no error, and a job rendered against
 // another seed's render reports the stochastic difference; a missing reference fails before rendering.
 TEST(RenderCommand, ReferenceErrorGoesToTheStats) {
-    const fs::path dir = fs::temp_directory_path() / "clipblur_cli_reference";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = testing::freshTempDir("clipblur_cli_reference");
     const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string();
     const std::string common = " --set output.half=false --set render.method=stochastic --set film.width=32"
                                " --set film.height=18 --set render.samples=4 --progress none";

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "io/shard.h"
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -90,13 +91,6 @@ void expectSameFrame(const fs::path& whole_path, const fs::path& merged_path, co
     EXPECT_TRUE(merged.pixels == whole.pixels) << what << ": pixels differ";
 }
 
-fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
 ino_t inode(const fs::path& path) {
     struct stat st {};
     return ::stat(path.c_str(), &st) == 0 ? st.st_ino : 0;
@@ -109,7 +103,7 @@ class RenderTileCommand : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RenderTileCommand, MergedShardsEqualTheWholeRender) {
     const std::string method = GetParam();
-    const fs::path dir = freshDir("clipblur_cli_tiles_" + method);
+    const fs::path dir = testing::freshTempDir("clipblur_cli_tiles_" + method);
     const fs::path whole = dir / "whole.exr";
     ASSERT_EQ(clipblur(dir, "render " + jobArgs(method) + " --progress none --threads 2 --out " + whole.string()), 0)
         << readText(dir / "stderr.txt");
@@ -142,7 +136,7 @@ INSTANTIATE_TEST_SUITE_P(Methods, RenderTileCommand, ::testing::Values("stochast
 
 // A complete shard is skipped untouched; a truncated one, or one from another config, is rendered again.
 TEST(RenderTileResume, OnlyIncompleteShardsAreRenderedAgain) {
-    const fs::path dir = freshDir("clipblur_cli_tiles_resume");
+    const fs::path dir = testing::freshTempDir("clipblur_cli_tiles_resume");
     const fs::path frame = dir / "frame.exr";
     const fs::path whole = dir / "whole.exr";
     ASSERT_EQ(clipblur(dir, "render " + jobArgs("stochastic") + " --progress none --out " + whole.string()), 0);

@@ -4,6 +4,7 @@
 
 #include "io/atomic_file.h"
 #include "scene/error.h"
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -15,9 +16,7 @@ static std::string slurp(const fs::path& p) {
 }
 
 TEST(AtomicFile, FailedWriteKeepsPreviousOutputAndLeavesNoTemporary) {
-    const fs::path dir = fs::temp_directory_path() / "clipblur_atomic_test";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = testing::freshTempDir("clipblur_atomic_test");
     const fs::path target = dir / "out.txt";
     writeAtomically(target, [](const fs::path& tmp) { std::ofstream(tmp) << "first"; });
     EXPECT_EQ(slurp(target), "first");
@@ -36,9 +35,7 @@ TEST(AtomicFile, FailedWriteKeepsPreviousOutputAndLeavesNoTemporary) {
 // Issue 24, kind 5: a frame's files are replaced together. A write failing after others succeeded,
 // or a group given up before commit, leaves every target as it was and no temporary.
 TEST(AtomicFileGroup, NothingMovesUnlessEveryWriteSucceeded) {
-    const fs::path dir = fs::temp_directory_path() / "clipblur_atomic_group_test";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = testing::freshTempDir("clipblur_atomic_group_test");
     const auto put = [](const char* text) { return [text](const fs::path& tmp) { std::ofstream(tmp) << text; }; };
     writeAtomically(dir / "a", put("a1"));
     writeAtomically(dir / "b", put("b1"));
@@ -78,9 +75,7 @@ TEST(AtomicFileGroup, NothingMovesUnlessEveryWriteSucceeded) {
 
 // A target that became a folder after the pre-render checks: commit refuses before moving anything.
 TEST(AtomicFileGroup, CommitRefusesAFolderTargetBeforeMovingAny) {
-    const fs::path dir = fs::temp_directory_path() / "clipblur_atomic_group_folder";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = testing::freshTempDir("clipblur_atomic_group_folder");
     writeAtomically(dir / "a", [](const fs::path& tmp) { std::ofstream(tmp) << "a1"; });
     AtomicFileGroup group;
     group.write(dir / "a", [](const fs::path& tmp) { std::ofstream(tmp) << "a2"; });

@@ -7,6 +7,7 @@
 #include "io/exr_merge.h"
 #include "io/shard.h"
 #include "scene/error.h"
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -66,10 +67,7 @@ static void writeShard(const std::string& framePath, int width, int height, Tile
 class ExrMerge : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() /
-              ("clipblur_merge_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        dir = testing::freshTempDir("clipblur_merge_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         frame = (dir / "out.0007.exr").string();
     }
     void TearDown() override { fs::remove_all(dir); }

@@ -9,6 +9,7 @@
 #include "io/frame_path.h"
 #include "io/stats_writer.h"
 #include "scene/error.h"
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -81,7 +82,7 @@ TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
     stats.method = stochastic;
     stats.warnings = {"one", "two"};
     stats.reference = RenderStats::Reference{"ref.exr", 0.25, 0.5, 0.125};
-    const auto path = std::filesystem::temp_directory_path() / "clipblur_stats_test" / "s.json";
+    const auto path = testing::freshTempDir("clipblur_stats_test") / "s.json";
     // 1e9 s after the epoch is 2001-09-09 01:46:40 UTC (a well-known timestamp).
     const StatsContext context{3, "x.exr", 2, "0123456789abcdef",
                                utcTimestamp(std::chrono::system_clock::from_time_t(1000000000))};

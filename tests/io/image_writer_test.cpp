@@ -19,13 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
 // A 5 x 4 data window at (3, 2) inside a 16 x 12 display window; values are multiples of 1/4 so they
 // are exact in half precision.
 Image windowedImage() {
@@ -67,7 +60,7 @@ bool noTemporaries(const fs::path& dir) {
 }  // namespace
 
 TEST(ImageWriter, ExrRoundTripKeepsChannelsWindowsAndMetadata) {
-    const fs::path dir = freshDir("clipblur_exr_test");
+    const fs::path dir = testing::freshTempDir("clipblur_exr_test");
     const Image image = windowedImage();
     for (bool half : {true, false}) {
         const fs::path file = dir / (half ? "half.exr" : "float.exr");
@@ -125,7 +118,7 @@ TEST(ImageWriter, SrgbEncodingMatchesTheStandardCurve) {
 }
 
 TEST(ImageWriter, PngPreviewCoversTheDisplayWindow) {
-    const fs::path dir = freshDir("clipblur_png_test");
+    const fs::path dir = testing::freshTempDir("clipblur_png_test");
     Image image = windowedImage();
     image.find("R")->values[0] = 0.5f;   // data (0,0) = display (3,2)
     image.find("G")->values[0] = 0.18f;
@@ -148,7 +141,7 @@ TEST(ImageWriter, PngPreviewCoversTheDisplayWindow) {
 }
 
 TEST(ImageWriter, FailedWriteLeavesThePreviousFile) {
-    const fs::path dir = freshDir("clipblur_exr_fail_test");
+    const fs::path dir = testing::freshTempDir("clipblur_exr_fail_test");
     const fs::path file = dir / "frame.exr";
     writeExr(file, windowedImage(), metadata(), ExrFormat{});
     const auto before = fs::file_size(file);
@@ -193,7 +186,7 @@ FrameHeader sampleFrameHeader() {
 }  // namespace
 
 TEST(ImageWriter, HeaderCarriesCompressionChromaticitiesAndTheFrame) {
-    const fs::path dir = freshDir("clipblur_exr_header_test");
+    const fs::path dir = testing::freshTempDir("clipblur_exr_header_test");
     ImageMetadata meta = metadata();
     meta.frame = sampleFrameHeader();
     for (const ExrCompression compression :
@@ -237,7 +230,7 @@ TEST(ImageWriter, HeaderCarriesCompressionChromaticitiesAndTheFrame) {
 // per-channel types (installed by scripts/setup.sh from Debian's openexr).
 TEST(ImageWriter, ExrheaderSeesStandardAttributesAndFloatDepth) {
     if (std::system("command -v exrheader > /dev/null 2>&1") != 0) GTEST_SKIP() << "exrheader (Debian openexr) missing";
-    const fs::path dir = freshDir("clipblur_exrheader_test");
+    const fs::path dir = testing::freshTempDir("clipblur_exrheader_test");
     ImageMetadata meta = metadata();
     meta.frame = sampleFrameHeader();
     const fs::path file = dir / "piz.exr";

@@ -7,6 +7,7 @@
 
 #include "io/shard.h"
 #include "scene/error.h"
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -133,10 +134,7 @@ class ShardCheck : public ::testing::Test {
 protected:
     void SetUp() override {
         // One folder per test: ctest runs the tests of this fixture in parallel processes.
-        dir = fs::temp_directory_path() /
-              (std::string("clipblur_shard_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        dir = testing::freshTempDir(std::string("clipblur_shard_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     }
     void TearDown() override { fs::remove_all(dir); }
     fs::path dir;

@@ -5,6 +5,7 @@
 
 #include "io/slurm_script.h"
 #include "scene/error.h"
+#include "tests/support/cli_harness.h"
 
 namespace clipblur {
 
@@ -84,9 +85,7 @@ class SlurmScriptRun : public ::testing::Test {
 protected:
     void SetUp() override {
         // One folder per test: ctest runs the tests of this fixture in parallel processes.
-        dir = fs::temp_directory_path() /
-              (std::string("clipblur_slurm_script_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
+        dir = testing::freshTempDir(std::string("clipblur_slurm_script_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::create_directories(dir / "bin");
         plan = examplePlan(dir);
         // A stand-in binary that logs its argv one word per line; `merge --check` answers with $CHECK.

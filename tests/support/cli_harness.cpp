@@ -1,6 +1,7 @@
 #include "support/cli_harness.h"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -25,7 +26,8 @@ std::string captureShell(const std::string& command) {
 }
 
 std::filesystem::path freshTempDir(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;

@@ -14,7 +14,8 @@ int runShell(const std::string& command);
 // Runs a shell command line and returns what it wrote to stdout.
 std::string captureShell(const std::string& command);
 
-// An empty folder of that name under the system's temporary folder.
+// An empty folder under the system's temporary folder, named `name` and this process's id: ctest runs
+// test processes side by side (the glTF fixture runs tests that also run alone), so no two share one.
 std::filesystem::path freshTempDir(const std::string& name);
 
 // A whole EXR read as float, channels interleaved as in the file.
