@@ -4,7 +4,8 @@
 
 namespace clipblur {
 
-CameraPath::CameraPath(const Camera& camera) {
+CameraPath::CameraPath(const Camera& camera) : exact_(camera.motion) {
+    if (exact_) return;
     for (const CameraKey& k : camera.keys) {
         times_.push_back(k.time);
         frames_.push_back(makeCameraFrame(k.position, k.view, k.up));
@@ -14,6 +15,7 @@ CameraPath::CameraPath(const Camera& camera) {
 
 CameraFrame CameraPath::at(double t) const {
     // Same branches and arithmetic as evalCamera.
+    if (exact_) return exact_->at(t);
     if (frames_.empty()) return {};
     if (frames_.size() == 1 || t <= times_.front()) return frames_.front();
     if (t >= times_.back()) return frames_.back();

@@ -1,21 +1,27 @@
 #pragma once
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "scene/camera.h"
+#include "scene/exact_camera.h"
 
 namespace clipblur {
 
 // evalCamera with the key frames and per-segment rotations built once: at(t) returns exactly (bit for
 // bit) what evalCamera(camera, t) returns, without re-orthonormalising keys and re-deriving the segment
-// rotation for every ray.
+// rotation for every ray. An exact glTF camera is evaluated from its chain, as evalCamera does.
 class CameraPath {
 public:
     explicit CameraPath(const Camera& camera);
     CameraFrame at(double t) const;
 
+    // The camera's exact motion, or null for a keyed camera.
+    const ExactCamera* exact() const { return exact_.get(); }
+
 private:
+    std::shared_ptr<const ExactCamera> exact_;
     std::vector<double> times_;
     std::vector<CameraFrame> frames_;     // per key
     std::vector<CameraMotion> segments_;  // between keys i and i+1

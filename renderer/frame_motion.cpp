@@ -37,6 +37,29 @@ glm::dquat orientationOf(const glm::dmat4& m) {
     return glm::quat_cast(glm::dmat3(x, y, glm::cross(x, y)));
 }
 
+// The turn of an exact camera over [t0, t1], summed along its motion: between two key times every
+// track is one polynomial or slerp arc, smooth and turning by less than pi, so each such piece is cut
+// into kPieceSamples chords: exact for a turn about a fixed axis, an undercount of relative order
+// kPieceSamples^-2 for a curved one.
+double exactCameraTurn(const ExactCamera& camera, double t0, double t1) {
+    constexpr int kPieceSamples = 32;
+    std::vector<double> times{t0};
+    for (const double k : camera.keyTimes())
+        if (k > t0 && k < t1) times.push_back(k);
+    times.push_back(t1);
+    const auto orientation = [&](double t) { return glm::quat_cast(camera.at(t).basis()); };
+    double total = 0.0;
+    glm::dquat previous = orientation(t0);
+    for (std::size_t i = 0; i + 1 < times.size(); ++i)
+        for (int j = 1; j <= kPieceSamples; ++j) {
+            const double t = j == kPieceSamples ? times[i + 1] : times[i] + (times[i + 1] - times[i]) * j / kPieceSamples;
+            const glm::dquat q = orientation(t);
+            total += angleBetween(previous, q);
+            previous = q;
+        }
+    return total;
+}
+
 }  // namespace
 
 bool MotionWindow::anyObjectMoves() const {
@@ -57,8 +80,14 @@ MotionWindow FrameMotion::windowOf(double a, double b, const MotionWindow* outer
         return p.position == q.position && p.e1 == q.e1 && p.e3 == q.e3;
     };
     const auto same_eye = [](const CameraFrame& p, const CameraFrame& q) { return p.position == q.position; };
-    w.camera_still = (outer && outer->camera_still) || cameraKeeps(scene_.camera, camera_, a, b, same_pose);
-    w.eye_still = w.camera_still || (outer && outer->eye_still) || cameraKeeps(scene_.camera, camera_, a, b, same_eye);
+    if (const ExactCamera* exact = camera_.exact()) {
+        // Judged from the tracks: between key times the exact camera does not move at a constant rate.
+        w.camera_still = (outer && outer->camera_still) || exact->constantOver(a, b);
+        w.eye_still = w.camera_still || (outer && outer->eye_still) || exact->eyeConstantOver(a, b);
+    } else {
+        w.camera_still = (outer && outer->camera_still) || cameraKeeps(scene_.camera, camera_, a, b, same_pose);
+        w.eye_still = w.camera_still || (outer && outer->eye_still) || cameraKeeps(scene_.camera, camera_, a, b, same_eye);
+    }
     w.object_still.resize(scene_.objects.size());
     for (std::size_t o = 0; o < scene_.objects.size(); ++o)
         w.object_still[o] = (outer && outer->object_still[o]) || isStatic(scene_.objects[o], a, b);
@@ -92,7 +121,9 @@ double FrameMotion::largestTurn() const {
         }
         return total;
     };
-    double largest = turn([&](double t) { return glm::quat_cast(camera(t).basis()); });
+    const auto camera_orientation = [&](double t) { return glm::quat_cast(camera(t).basis()); };
+    double largest = camera_.exact() ? exactCameraTurn(*camera_.exact(), t0, t1)
+                                     : turn(camera_orientation);
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
         const Object& object = scene_.objects[o];
         if (object.motion && !object.motion->skinned()) {

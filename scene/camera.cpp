@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/exact_camera.h"
+
 namespace clipblur {
 
 CameraFrame makeCameraFrame(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& up,
@@ -43,6 +45,7 @@ CameraFrame CameraMotion::at(double f) const {
 }
 
 CameraFrame evalCamera(const Camera& camera, double t) {
+    if (camera.motion) return camera.motion->at(t);
     const auto& keys = camera.keys;
     if (keys.empty()) return {};
     auto frameOf = [](const CameraKey& k) { return makeCameraFrame(k.position, k.view, k.up); };

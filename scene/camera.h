@@ -48,7 +48,8 @@ private:
     IntraframeRotation rotation_;
 };
 
-// The camera at absolute time t (frames): the key segment containing t, held constant outside the keys.
+// The camera at absolute time t (frames): its exact motion when it has one, else the key segment
+// containing t, held constant outside the keys.
 CameraFrame evalCamera(const Camera& camera, double t);
 
 // Image plane (p1, p2) to raster coordinates (x right, y down, pixel centres at +0.5) and back.

@@ -82,6 +82,9 @@ public:
     ExactPose pose(const std::vector<glm::dvec3>& rest, double t, Rates rates,
                    std::span<const std::uint32_t> vertices = {}) const;
 
+    // The chain's world matrix (not made rigid) and, when `rate` is given, its time derivative.
+    glm::dmat4 world(double t, glm::dmat4* rate = nullptr) const { return chain_.product(t, rate); }
+
     const MorphBinding& morph() const { return morph_; }
     const SkinBinding& skin() const { return skin_; }
 

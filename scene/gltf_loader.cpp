@@ -13,6 +13,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "scene/exact_camera.h"
 #include "scene/exact_motion.h"
 #include "scene/gltf_animation.h"
 #include "scene/scene_validation.h"
@@ -37,9 +38,6 @@ constexpr std::size_t kMaxAccessorCount = std::size_t{1} << 25;
 constexpr std::size_t kMaxMorphPositions = std::size_t{1} << 25;
 // Nodes from a root to a leaf: the walk recurses, and every object composes its whole chain.
 constexpr std::size_t kMaxHierarchyDepth = 1024;
-// A camera's bound: its position (units) and, through a unit box, its direction (radians: a hundredth
-// of a pixel at 40 degrees over 720 pixels); bisected to half of it like objects.
-constexpr double kCameraTolerance = 1e-5;
 
 // Reads the model's accessors, checked against the spec and their buffers, and fails with the pointer
 // of what is wrong.
@@ -565,7 +563,10 @@ private:
     MorphBinding morphBinding(const PrimitiveGeometry& g, const Track* weights) const;
     std::vector<const AnimatedNode*> chainTo(std::size_t node) const;
     void checkJumps(const KeyPlan& plan, const std::string& where) const;
+    std::vector<std::size_t> chosenCamera() const;
     void pickCamera();
+    std::vector<CameraKey> cameraKeys(ChainMotion motion, const KeyPlan& plan, std::size_t node) const;
+    void followCamera(const ChainMotion& motion, std::size_t node, Camera& camera) const;
 
     const tinygltf::Model& model_;
     GltfReader reader_;
@@ -791,7 +792,8 @@ SkinBinding SceneBuilder::skinBinding(std::size_t node, const tinygltf::Primitiv
     return out;
 }
 
-void SceneBuilder::pickCamera() {
+// The camera node's chain: the one the job names, else the first camera in the scene; empty for none.
+std::vector<std::size_t> SceneBuilder::chosenCamera() const {
     std::vector<std::size_t> matches;
     for (std::size_t i = 0; i < cameras_.size(); ++i) {
         const tinygltf::Node& n = model_.nodes[cameras_[i].back()];
@@ -809,8 +811,12 @@ void SceneBuilder::pickCamera() {
             throwConfigError(request_.camera_ref, "'" + request_.camera_name + "' names " +
                                                       std::to_string(matches.size()) + " camera nodes; name one node");
     }
-    if (matches.empty()) return;
-    const std::vector<std::size_t>& chain = cameras_[matches.front()];
+    return matches.empty() ? std::vector<std::size_t>{} : cameras_[matches.front()];
+}
+
+void SceneBuilder::pickCamera() {
+    const std::vector<std::size_t> chain = chosenCamera();
+    if (chain.empty()) return;
     const std::size_t node = chain.back();
     const std::string where = pointer("cameras", static_cast<std::size_t>(model_.nodes[node].camera));
     const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(model_.nodes[node].camera)];
@@ -824,7 +830,6 @@ void SceneBuilder::pickCamera() {
     out_.camera_aspect = c.perspective.aspectRatio;
     SplitChain s = split(chain);
     s.motion.tail = s.tail;
-    s.motion.rigid = true;
     if (!s.animated) s.motion.chain.clear();
     KeyPlan still;
     still.times = {0.0};
@@ -832,21 +837,48 @@ void SceneBuilder::pickCamera() {
     still.exact = true;
     const KeyPlan plan = s.animated ? planKeys(s.motion) : still;
     checkJumps(plan, pointer("nodes", node));
+    if (plan.exact && plan.times.size() <= request_.max_transform_keys)
+        camera.keys = cameraKeys(s.motion, plan, node);
+    else
+        followCamera(s.motion, node, camera);
+    out_.camera = camera;
+}
+
+// Keys where they are exact: one animated node without CUBICSPLINE under static ancestors of uniform
+// scale, or no motion at all.
+std::vector<CameraKey> SceneBuilder::cameraKeys(ChainMotion motion, const KeyPlan& plan, std::size_t node) const {
+    motion.rigid = true;
     ResampleSpec spec;
-    for (int k = 0; k < 8; ++k) spec.corners.push_back({k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0});
-    spec.tolerance = 0.5 * kCameraTolerance;
     spec.max_keys = request_.max_transform_keys;
     std::vector<TransformKey> keys;
     try {
-        keys = followChain(s.motion, plan, spec);
+        keys = followChain(motion, plan, spec);
     } catch (const std::domain_error& e) {
         reader_.fail(pointer("nodes", node), std::string("the camera's world transform has ") + e.what());
-    } catch (const std::length_error&) {
-        reader_.fail(pointer("nodes", node), "the camera's motion needs more than " + std::to_string(spec.max_keys) + " keys");
     }
+    std::vector<CameraKey> out;
     for (const TransformKey& k : keys)
-        camera.keys.push_back({k.time, k.translate, k.rotate * glm::dvec3(0, 0, -1), k.rotate * glm::dvec3(0, 1, 0)});
-    out_.camera = camera;
+        out.push_back({k.time, k.translate, k.rotate * glm::dvec3(0, 0, -1), k.rotate * glm::dvec3(0, 1, 0)});
+    return out;
+}
+
+// Any other motion is followed exactly (ExactCamera). Its poses at the key times and between them are
+// checked here, so that a -Z column collapsing onto +Y or to zero is reported against the node.
+void SceneBuilder::followCamera(const ChainMotion& motion, std::size_t node, Camera& camera) const {
+    auto exact = std::make_shared<ExactCamera>(store_, motion);
+    const std::vector<double>& times = exact->keyTimes();
+    double t = times.front();
+    try {
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            t = times[i];
+            const CameraFrame f = exact->at(t);
+            camera.keys.push_back({t, f.position, f.e3, f.e1});
+            if (i + 1 < times.size()) exact->at(t = 0.5 * (times[i] + times[i + 1]));
+        }
+    } catch (const Error& e) {
+        reader_.fail(pointer("nodes", node), "at frame " + std::to_string(t) + " the camera's " + e.what());
+    }
+    camera.motion = std::move(exact);
 }
 
 GltfScene buildScene(tinygltf::Model& model, const std::string& name, const GltfRequest& request) {

@@ -24,9 +24,14 @@ struct CameraKey {
     glm::dvec3 up{0.0, 1.0, 0.0};
 };
 
+class ExactCamera;  // scene/exact_camera.h
+
 struct Camera {
     double vfov_degrees = 40.0;
     std::vector<CameraKey> keys;  // sorted by time; one key is a still camera
+    // A glTF camera that keys cannot follow exactly; set, it is the camera's motion at every time and
+    // `keys` hold its poses at its key times (for checks and reports, never interpolated).
+    std::shared_ptr<const ExactCamera> motion;
 };
 
 struct Film {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "scene/exact_camera.h"
 #include "scene/rotation.h"
 
 namespace clipblur {
@@ -95,15 +96,22 @@ glm::dvec3 objectSpacePoint(const Object& object, const ObjectMotionState& state
 MotionSnapshot::MotionSnapshot(const Scene& scene, const Projection& proj, double t, double near)
     : time(t), projection(proj), near_depth(near) {
     const auto& keys = scene.camera.keys;
-    camera = evalCamera(scene.camera, t);
-    const Segment seg = segmentAt(keys, t);
-    if (seg.moving) {
-        const CameraKey& k0 = keys[seg.index];
-        const CameraKey& k1 = keys[seg.index + 1];
-        const CameraMotion motion(makeCameraFrame(k0.position, k0.view, k0.up),
-                                  makeCameraFrame(k1.position, k1.view, k1.up));
-        camera_velocity = motion.velocity() * seg.rate;
-        camera_angular_velocity = motion.rotation().angularVelocity() * seg.rate;
+    if (scene.camera.motion) {
+        CameraRates rates;
+        camera = scene.camera.motion->at(t, &rates);
+        camera_velocity = rates.velocity;
+        camera_angular_velocity = rates.angular_velocity;
+    } else {
+        camera = evalCamera(scene.camera, t);
+        const Segment seg = segmentAt(keys, t);
+        if (seg.moving) {
+            const CameraKey& k0 = keys[seg.index];
+            const CameraKey& k1 = keys[seg.index + 1];
+            const CameraMotion motion(makeCameraFrame(k0.position, k0.view, k0.up),
+                                      makeCameraFrame(k1.position, k1.view, k1.up));
+            camera_velocity = motion.velocity() * seg.rate;
+            camera_angular_velocity = motion.rotation().angularVelocity() * seg.rate;
+        }
     }
     objects.reserve(scene.objects.size());
     for (const Object& object : scene.objects) objects.push_back(objectStateAt(object, t));
