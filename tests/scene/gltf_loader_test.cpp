@@ -531,6 +531,29 @@ double worstCameraDeviation(const Camera& camera, const std::function<glm::dmat4
     return worst;
 }
 
+// The worst distance of the rates MotionSnapshot takes from the camera (what propagation reads) from
+// central differences of truth(t)'s camera, h = 1e-4 frames: the difference is truncation, falling as
+// h^2 (measured 1.6e-9 at h = 1e-3, 2e-11 at 1e-4), and rounding (1e-16 / h of quantities of a few
+// units, 3e-12) stays below it; callers allow 1e-9.
+double worstRateDeviation(const Camera& camera, const std::function<glm::dmat4(double)>& truth,
+                          const std::vector<double>& times) {
+    Scene scene;
+    scene.camera = camera;
+    const Projection projection(64, 64, 40.0);
+    constexpr double h = 1e-4;
+    double worst = 0.0;
+    for (const double t : times) {
+        const MotionSnapshot snap(scene, projection, t);
+        const CameraFrame f = frameOfMatrix(truth(t)), a = frameOfMatrix(truth(t - h)), b = frameOfMatrix(truth(t + h));
+        const glm::dvec3 velocity = (b.position - a.position) / (2 * h);
+        const glm::dvec3 omega = 0.5 * (glm::cross(f.e1, b.e1 - a.e1) + glm::cross(f.e2, b.e2 - a.e2) +
+                                        glm::cross(f.e3, b.e3 - a.e3)) / (2 * h);
+        worst = std::max({worst, glm::length(snap.camera_velocity - velocity),
+                          glm::length(snap.camera_angular_velocity - omega)});
+    }
+    return worst;
+}
+
 TEST(GltfLoader, CameraUnderAnAnimatedParentIsFollowedExactly) {
     std::vector<float> swing;
     const GltfScene s = loadValid(boomCamera(swing), "boom_camera");
@@ -636,6 +659,11 @@ TEST(GltfLoader, CubicSplineCameraIsFollowedExactly) {
     const double worst = worstCameraDeviation(*s.camera, truth, seededTimes(-2, 26, 2000, 23));
     EXPECT_LT(worst, 1e-12);
     std::cout << "CUBICSPLINE camera: measured deviation " << worst << "\n";
+    std::vector<double> inside = seededTimes(0.5, 11.5, 100, 31);  // away from the keys' kinks
+    for (const double t : seededTimes(12.5, 23.5, 100, 37)) inside.push_back(t);
+    const double rates = worstRateDeviation(*s.camera, truth, inside);
+    EXPECT_LT(rates, 1e-9);
+    std::cout << "CUBICSPLINE camera: rates against central differences " << rates << "\n";
 }
 
 TEST(GltfLoader, CameraUnderAShearingParentLooksDownItsMinusZColumn) {
@@ -666,6 +694,57 @@ TEST(GltfLoader, CameraUnderAShearingParentLooksDownItsMinusZColumn) {
     const double worst = worstCameraDeviation(*s.camera, truth, seededTimes(-2, 26, 2000, 29));
     EXPECT_LT(worst, 1e-12);
     std::cout << "sheared camera: measured deviation " << worst << "\n";
+    const double rates = worstRateDeviation(*s.camera, truth, seededTimes(0.5, 23.5, 200, 41));
+    EXPECT_LT(rates, 1e-9);
+    std::cout << "sheared camera: rates against central differences " << rates << "\n";
+}
+
+TEST(GltfLoader, CameraWithMoreKeysThanAllowedIsFollowedExactly) {
+    GltfWriter w;
+    const int mesh = addTetraMesh(w);
+    w.doc()["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}}});
+    const int cam = addNode(w, {{"name", "dolly"}, {"camera", 0}});
+    setScene(w, {cam, addNode(w, {{"mesh", mesh}, {"translation", {0, 0, -10}}})});
+    const std::vector<float> times = {0, 0.25, 0.5, 0.75, 1, 1.25};
+    const std::vector<float> path = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 2, 3, 0, 2};
+    animate(w, cam, "translation", "LINEAR", times, path);
+    GltfRequest r = request();
+    r.max_transform_keys = 4;
+    const GltfScene s = loadValid(w, "many_key_camera", r);
+    ASSERT_TRUE(s.camera.has_value());
+    ASSERT_TRUE(s.camera->motion);  // six key times, four allowed
+    EXPECT_EQ(s.camera->keys.size(), 6u);
+    const auto truth = [&](double t) {
+        const double seconds = std::clamp(t / 24.0, 0.0, 1.25);
+        const std::size_t k = std::min<std::size_t>(4, static_cast<std::size_t>(seconds / 0.25));
+        const double u = (seconds - times[k]) / 0.25;
+        glm::dvec3 p;
+        for (int i = 0; i < 3; ++i) p[i] = (1 - u) * path[3 * k + i] + u * path[3 * (k + 1) + i];
+        return trs(p, glm::dquat(1, 0, 0, 0), glm::dvec3(1));
+    };
+    // 1e-12: a lerp, computed here with another formula.
+    EXPECT_LT(worstCameraDeviation(*s.camera, truth, seededTimes(-2, 32, 500, 43)), 1e-12);
+}
+
+TEST(GltfLoader, CameraWhoseViewCollapsesIsRefusedAtItsNode) {
+    GltfWriter w;
+    const int mesh = addTetraMesh(w);
+    w.doc()["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}}});
+    const int cam = addNode(w, {{"name", "cam"}, {"camera", 0}, {"translation", {0, 0, 1}}});
+    const int rig = addNode(w, {{"name", "rig"}, {"children", {cam}}});
+    setScene(w, {rig, addNode(w, {{"mesh", mesh}, {"translation", {0, 0, -10}}})});
+    // The rig's z scale reaches 0 at 1 s (frame 24): the camera's -Z column vanishes there.
+    animate(w, rig, "scale", "LINEAR", {0, 1}, {1, 1, 1, 1, 1, 0});
+    const auto file = std::filesystem::path(::testing::TempDir()) / "collapsing_camera.gltf";
+    w.writeGltf(file);
+    try {
+        loadGltfScene(file, request());
+        ADD_FAILURE() << "a camera without a view direction loaded";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Scene);
+        EXPECT_NE(e.message().find("/nodes/" + std::to_string(cam) + ": at frame 24"), std::string::npos) << e.what();
+        EXPECT_NE(e.message().find("view direction is zero"), std::string::npos) << e.what();
+    }
 }
 
 TEST(GltfLoader, MorphWeightsAreExactDeformationKeys) {
