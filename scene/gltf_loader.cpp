@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "scene/exact_camera.h"
@@ -876,7 +877,9 @@ void SceneBuilder::followCamera(const ChainMotion& motion, std::size_t node, Cam
             if (i + 1 < times.size()) exact->at(t = 0.5 * (times[i] + times[i + 1]));
         }
     } catch (const Error& e) {
-        reader_.fail(pointer("nodes", node), "at frame " + std::to_string(t) + " the camera's " + e.what());
+        std::ostringstream frame;
+        frame << t;
+        reader_.fail(pointer("nodes", node), "at frame " + frame.str() + ": " + e.message());
     }
     camera.motion = std::move(exact);
 }
