@@ -560,6 +560,10 @@ private:
                          "material " + std::to_string(p.material) + " does not exist");
         return p.material < 0 ? static_cast<int>(default_material_) : p.material;
     }
+    // A texture on a primitive without TEXCOORD_0 has no coordinates to be read at (the Khronos validator's
+    // MESH_PRIMITIVE_TOO_FEW_TEXCOORDS error); Blender 3.4 writes it for a mesh without a UV map. Refused
+    // rather than rendered at some constant coordinate.
+    void requireNoTexture(const tinygltf::Primitive& p, int mesh, std::size_t prim, const std::string& where) const;
     SkinBinding skinBinding(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
     Object skinnedObject(Object object, std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
     MorphBinding morphBinding(const PrimitiveGeometry& g, const Track* weights) const;
@@ -615,8 +619,21 @@ void SceneBuilder::addMeshInstance(const std::vector<std::size_t>& chain) {
             warnings_.insert("glTF primitives without triangles are skipped (" + where + " and any others)");
             continue;
         }
+        if (g.uvs.empty()) requireNoTexture(p, n.mesh, i, where);
         buildObject(chain, i, std::move(g));
     }
+}
+
+void SceneBuilder::requireNoTexture(const tinygltf::Primitive& p, int mesh, std::size_t prim,
+                                    const std::string& where) const {
+    const Material& m = out_.materials[static_cast<std::size_t>(materialOf(p, mesh, prim))];
+    const char* texture = !m.image.file.empty()            ? "baseColorTexture"
+                          : !m.emission_image.file.empty() ? "emissiveTexture"
+                                                           : nullptr;
+    if (texture)
+        reader_.fail(where + "/material", "material " + std::to_string(p.material) + "'s " + texture +
+                                              " reads TEXCOORD_0, which the primitive lacks (give the mesh UVs or "
+                                              "drop the texture)");
 }
 
 void SceneBuilder::checkJumps(const KeyPlan& plan, const std::string& where) const {

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <limits>
 #include <random>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -693,6 +694,49 @@ TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
         EXPECT_NE(e.message().find("/materials/0/pbrMetallicRoughness/baseColorTexture: texCoord 1 is not supported"),
                   std::string::npos)
             << e.what();
+    }
+}
+
+// Blender 3.4's export of a textured mesh without a UV map: the material names a baseColorTexture (or an
+// emissiveTexture) but the primitive has POSITION and NORMAL only. Refused at the primitive's material,
+// where the Khronos validator reports MESH_PRIMITIVE_TOO_FEW_TEXCOORDS; with TEXCOORD_0 it loads.
+TEST(GltfLoader, TextureOnAPrimitiveWithoutTexcoordsIsRefused) {
+    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_gltf_no_uvs";
+    std::filesystem::create_directories(dir);
+    testing::writeRgb8Png(dir / "checker.png", 2, 1, {255, 255, 255, 0, 0, 0});
+    const auto build = [](const json& material, bool uvs) {
+        GltfWriter w;
+        const int pos = w.addFloats({0, 0, 0, 1, 0, 0, 1, 1, 0}, "VEC3", 34962);
+        const int normal = w.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 34962);
+        json attributes = {{"POSITION", pos}, {"NORMAL", normal}};
+        if (uvs) attributes["TEXCOORD_0"] = w.addFloats({0, 0, 1, 0, 1, 1}, "VEC2", 34962);
+        w.doc()["images"] = json::array({{{"uri", "checker.png"}}});
+        w.doc()["textures"] = json::array({{{"source", 0}}});
+        // A plain material first, so the textured one's index (1) shows in the message.
+        w.doc()["materials"] = json::array({{{"name", "plain"}}, material});
+        w.doc()["meshes"].push_back(
+            {{"primitives", json::array({{{"attributes", attributes}, {"indices", w.addIndices({0, 1, 2}, 5123)},
+                                          {"material", 1}}})}});
+        setScene(w, {addNode(w, {{"name", "floor"}, {"mesh", 0}})});
+        return w;
+    };
+    const json base = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}};
+    const json glow = {{"emissiveFactor", {1, 1, 1}}, {"emissiveTexture", {{"index", 0}}}};
+    for (const auto& [name, material, texture] :
+         {std::tuple{"base", base, "baseColorTexture"}, std::tuple{"glow", glow, "emissiveTexture"}}) {
+        build(material, true).writeGltf(dir / (std::string(name) + "_uvs.gltf"));
+        EXPECT_EQ(loadGltfScene(dir / (std::string(name) + "_uvs.gltf"), request()).objects.size(), 1u) << name;
+        build(material, false).writeGltf(dir / (std::string(name) + ".gltf"));
+        try {
+            loadGltfScene(dir / (std::string(name) + ".gltf"), request());
+            ADD_FAILURE() << name << " loaded";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ExitCode::Scene);
+            EXPECT_NE(std::string(e.what()).find(std::string(name) + ".gltf: /meshes/0/primitives/0/material: material 1's " +
+                                                 texture + " reads TEXCOORD_0, which the primitive lacks"),
+                      std::string::npos)
+                << e.what();
+        }
     }
 }
 
