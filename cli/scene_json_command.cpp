@@ -2,11 +2,13 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
 #include "io/job_loader.h"
+#include "scene/object_motion.h"
 
 namespace clipblur::cli {
 
@@ -41,7 +43,7 @@ json shutterJson(const Shutter& shutter) {
     return out;
 }
 
-json objectJson(const Object& object) {
+json objectJson(const Object& object, const std::optional<double>& at) {
     json triangles = json::array();
     for (const auto& t : object.mesh.triangles) triangles.push_back(json::array({t[0], t[1], t[2]}));
     json transform = json::array();
@@ -53,17 +55,26 @@ json objectJson(const Object& object) {
     json deformation = json::array();
     for (const DeformationKey& k : object.deformation)
         deformation.push_back({{"time", k.time}, {"positions", points(k.positions)}});
-    return {{"name", object.name},
-            {"material", object.material},
-            {"positions", points(object.mesh.positions)},
-            {"triangles", std::move(triangles)},
-            {"transform", std::move(transform)},
-            {"deformation", std::move(deformation)}};
+    json out = {{"name", object.name},
+                {"material", object.material},
+                {"positions", points(object.mesh.positions)},
+                {"triangles", std::move(triangles)},
+                {"transform", std::move(transform)},
+                {"deformation", std::move(deformation)},
+                {"exact_motion", object.motion != nullptr},
+                {"smooth", object.mesh.smooth()},
+                {"uvs", object.mesh.hasUvs()}};
+    if (at) {
+        std::vector<glm::dvec3> posed;
+        evalVertices(object, *at, posed);
+        out["posed"] = {{"time", *at}, {"positions", points(posed)}};
+    }
+    return out;
 }
 
 }  // namespace
 
-nlohmann::json sceneJson(const RenderJob& job) {
+nlohmann::json sceneJson(const RenderJob& job, const std::optional<double>& at) {
     const Scene& s = job.scene;
     json camera_keys = json::array();
     for (const CameraKey& k : s.camera.keys)
@@ -85,9 +96,11 @@ nlohmann::json sceneJson(const RenderJob& job) {
                                {"scale", m.texture.scale}}},
                              {"two_sided", m.two_sided},
                              {"unlit", m.model == ShadingModel::Unlit},
-                             {"emission", vec(m.emission)}});
+                             {"emission", vec(m.emission)},
+                             {"image", m.image.file},
+                             {"emission_image", m.emission_image.file}});
     json objects = json::array();
-    for (const Object& o : s.objects) objects.push_back(objectJson(o));
+    for (const Object& o : s.objects) objects.push_back(objectJson(o, at));
     return {{"source_file", job.source_file},
             {"config_hash", job.config_hash},
             {"film", {{"width", s.film.width}, {"height", s.film.height}, {"background", vec(s.film.background)}}},
@@ -110,15 +123,18 @@ Action addSceneJsonCommand(CLI::App& app) {
     struct Options {
         std::string job;
         std::vector<std::string> overrides;
+        std::optional<double> at;
     };
     auto opts = std::make_shared<Options>();
     CLI::App* sub = app.add_subcommand("scene-json", "Load a render job and print its expanded scene as JSON");
     sub->add_option("job", opts->job, "Job file (.yaml, .yml or .json)")->required();
     sub->add_option("--set", opts->overrides, "Override a setting: key.path=value (repeatable)")
         ->allow_extra_args(false);
+    sub->add_option("--at", opts->at,
+                    "Also give each object's world-space vertices at this time (frames), as the renderer poses them");
 
     return [opts]() {
-        std::cout << sceneJson(loadJob(opts->job, opts->overrides)).dump() << "\n";
+        std::cout << sceneJson(loadJob(opts->job, opts->overrides), opts->at).dump() << "\n";
         return 0;
     };
 }

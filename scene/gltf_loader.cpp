@@ -209,10 +209,10 @@ public:
           names_(request.taken_names.begin(), request.taken_names.end()) {}
 
     GltfScene build() {
-        // A required extension changes what the file means; only the two material extensions are read.
+        // A required extension changes what the file means; only the three material extensions are read.
         for (std::size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
             const std::string& e = model_.extensionsRequired[i];
-            if (e != "KHR_materials_unlit" && e != "KHR_materials_emissive_strength")
+            if (e != "KHR_materials_unlit" && e != "KHR_materials_emissive_strength" && e != "KHR_texture_transform")
                 reader_.fail("/extensionsRequired/" + std::to_string(i), "extension " + e + " is not supported");
         }
         readMaterials();
@@ -245,6 +245,7 @@ private:
                                          pointer("materials", i) + "/pbrMetallicRoughness/baseColorTexture");
             if (m.extensions.count("KHR_materials_unlit")) mat.model = ShadingModel::Unlit;
             readEmission(m, pointer("materials", i), mat);
+            uv_transforms_.push_back(materialUvTransform(m, mat, pointer("materials", i)));
             out_.materials.push_back(mat);
         }
         // The spec's default material: white, single-sided.
@@ -252,6 +253,7 @@ private:
         Material fallback;
         fallback.base_color = glm::dvec3(1.0);
         fallback.two_sided = false;
+        uv_transforms_.emplace_back(1.0);
         out_.materials.push_back(fallback);
     }
 
@@ -285,8 +287,6 @@ private:
     // through TEXCOORD_0.
     ImageTexture textureImage(const tinygltf::TextureInfo& info, const std::string& where) {
         if (info.texCoord != 0) reader_.fail(where, "texCoord " + std::to_string(info.texCoord) + " is not supported (TEXCOORD_0 only)");
-        if (info.extensions.count("KHR_texture_transform"))
-            warnings_.insert("glTF KHR_texture_transform is ignored (" + where + " and any others)");
         if (static_cast<std::size_t>(info.index) >= model_.textures.size())
             reader_.fail(where, "texture " + std::to_string(info.index) + " does not exist");
         const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
@@ -305,6 +305,50 @@ private:
         out.file = file.string();
         out.loc = FileLoc{reader_.name(), 0, 0};
         return out;
+    }
+
+    // KHR_texture_transform of one texture as the extension defines it: uv' = T(offset) R(rotation)
+    // S(scale) uv, with R = [cos sin; -sin cos] acting on (u, v); the identity without the extension.
+    glm::dmat3 uvTransform(const tinygltf::TextureInfo& info, const std::string& where) const {
+        const auto found = info.extensions.find("KHR_texture_transform");
+        if (found == info.extensions.end()) return glm::dmat3(1.0);
+        const tinygltf::Value& x = found->second;
+        const std::string at = where + "/extensions/KHR_texture_transform";
+        const auto pair = [&](const char* key, double fallback) {
+            if (!x.Has(key)) return glm::dvec2(fallback);
+            const tinygltf::Value& v = x.Get(key);
+            if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber() ||
+                !std::isfinite(v.Get(0).GetNumberAsDouble()) || !std::isfinite(v.Get(1).GetNumberAsDouble()))
+                reader_.fail(at + "/" + key, "must be 2 finite numbers");
+            return glm::dvec2(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
+        };
+        const glm::dvec2 offset = pair("offset", 0.0), scale = pair("scale", 1.0);
+        double rotation = 0.0;
+        if (x.Has("rotation")) {
+            const tinygltf::Value& r = x.Get("rotation");
+            rotation = r.IsNumber() ? r.GetNumberAsDouble() : std::numeric_limits<double>::quiet_NaN();
+            if (!std::isfinite(rotation)) reader_.fail(at + "/rotation", "must be a finite number");
+        }
+        if (x.Has("texCoord") && !(x.Get("texCoord").IsNumber() && x.Get("texCoord").GetNumberAsDouble() == 0.0))
+            reader_.fail(at + "/texCoord", "is not supported unless 0 (TEXCOORD_0 only)");
+        const double c = std::cos(rotation), s = std::sin(rotation);
+        // Columns (glm): u' = c sx u + s sy v + ox, v' = -s sx u + c sy v + oy.
+        return glm::dmat3(glm::dvec3(c * scale.x, -s * scale.x, 0.0), glm::dvec3(s * scale.y, c * scale.y, 0.0),
+                          glm::dvec3(offset, 1.0));
+    }
+
+    // The one UV transform of a material's used textures: both read the same corner UVs, so a base colour
+    // and an emissive texture with different transforms are refused.
+    glm::dmat3 materialUvTransform(const tinygltf::Material& m, const Material& mat, const std::string& where) const {
+        const std::string base_where = where + "/pbrMetallicRoughness/baseColorTexture";
+        const glm::dmat3 base = mat.image.file.empty() ? glm::dmat3(1.0)
+                                                       : uvTransform(m.pbrMetallicRoughness.baseColorTexture, base_where);
+        if (mat.emission_image.file.empty()) return base;
+        const glm::dmat3 emissive = uvTransform(m.emissiveTexture, where + "/emissiveTexture");
+        if (!mat.image.file.empty() && emissive != base)
+            reader_.fail(where + "/emissiveTexture/extensions/KHR_texture_transform",
+                         "differs from the baseColorTexture's (one UV transform per material is supported)");
+        return emissive;
     }
 
     void readNodes() {
@@ -559,6 +603,10 @@ private:
                          "material " + std::to_string(p.material) + " does not exist");
         return p.material < 0 ? static_cast<int>(default_material_) : p.material;
     }
+    // A texture on a primitive without TEXCOORD_0 has no coordinates to be read at (the Khronos validator's
+    // MESH_PRIMITIVE_TOO_FEW_TEXCOORDS error); Blender 3.4 writes it for a mesh without a UV map. Refused
+    // rather than rendered at some constant coordinate.
+    void requireNoTexture(const tinygltf::Primitive& p, int mesh, std::size_t prim, const std::string& where) const;
     SkinBinding skinBinding(std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
     Object skinnedObject(Object object, std::size_t node, const tinygltf::Primitive& p, const PrimitiveGeometry& g);
     MorphBinding morphBinding(const PrimitiveGeometry& g, const Track* weights) const;
@@ -584,6 +632,7 @@ private:
     std::set<std::size_t> visited_;
     std::set<std::string> names_;
     std::set<std::string> warnings_;
+    std::vector<glm::dmat3> uv_transforms_;  // per out_.materials entry: its KHR_texture_transform
     std::vector<std::vector<std::size_t>> cameras_;
     std::uint64_t triangles_ = 0;
 };
@@ -617,8 +666,21 @@ void SceneBuilder::addMeshInstance(const std::vector<std::size_t>& chain) {
             warnings_.insert("glTF primitives without triangles are skipped (" + where + " and any others)");
             continue;
         }
+        if (g.uvs.empty()) requireNoTexture(p, n.mesh, i, where);
         buildObject(chain, i, std::move(g));
     }
+}
+
+void SceneBuilder::requireNoTexture(const tinygltf::Primitive& p, int mesh, std::size_t prim,
+                                    const std::string& where) const {
+    const Material& m = out_.materials[static_cast<std::size_t>(materialOf(p, mesh, prim))];
+    const char* texture = !m.image.file.empty()            ? "baseColorTexture"
+                          : !m.emission_image.file.empty() ? "emissiveTexture"
+                                                           : nullptr;
+    if (texture)
+        reader_.fail(where + "/material", "material " + std::to_string(p.material) + "'s " + texture +
+                                              " reads TEXCOORD_0, which the primitive lacks (give the mesh UVs or "
+                                              "drop the texture)");
 }
 
 void SceneBuilder::checkJumps(const KeyPlan& plan, const std::string& where) const {
@@ -652,6 +714,8 @@ void SceneBuilder::buildObject(const std::vector<std::size_t>& chain, std::size_
             if (!g.uvs.empty()) object.mesh.corner_uvs.push_back(g.uvs[v]);
             if (!g.normals.empty()) object.mesh.corner_normals.push_back(g.normals[v]);
         }
+    const glm::dmat3& uv_transform = uv_transforms_[static_cast<std::size_t>(object.material)];
+    for (glm::dvec2& uv : object.mesh.corner_uvs) uv = glm::dvec2(uv_transform * glm::dvec3(uv, 1.0));
     if (n.skin >= 0) {
         out_.objects.push_back(skinnedObject(std::move(object), node, mesh.primitives[prim], g));
         return;

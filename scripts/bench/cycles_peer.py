@@ -112,10 +112,20 @@ def check_supported(scene):
     A shutter curve is refused too: Blender's own curve is a 256-entry table whose CDF this peer already
     corrects for a box (the shutter fix above), and nothing here maps clipblur's curve onto it.
     Unlit and emissive materials are refused: this peer's node trees were never checked against them (no
-    Blender on the machine that added them)."""
+    Blender on the machine that added them). So are exact glTF motions (scene-json's exact_motion: a wheel
+    under a moving car, a skin; they have no keys here and were rendered still), image textures (no node
+    tree here builds them) and shading normals (faces render flat here)."""
     if scene["shutter"].get("curve"):
         raise RuntimeError("a shutter curve is not supported by the Cycles peer (a box shutter only)")
+    for o in scene["objects"]:
+        if o.get("smooth"):
+            raise RuntimeError(f"object {o['name']}: shading normals are not supported by the Cycles peer (flat only)")
+        if o.get("exact_motion"):
+            raise RuntimeError(f"object {o['name']}: glTF motion followed exactly (no keys to rebuild it from) "
+                               "is not supported by the Cycles peer")
     for i, m in enumerate(scene["materials"]):
+        if m.get("image") or m.get("emission_image"):
+            raise RuntimeError(f"material {i}: image textures are not supported by the Cycles peer")
         if m.get("unlit") or any(c != 0.0 for c in m.get("emission", [0.0])):
             raise RuntimeError(f"material {i}: unlit and emissive materials are not supported by the Cycles peer")
     for o in scene["objects"]:

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <limits>
 #include <random>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -31,6 +32,8 @@ namespace {
 
 using testing::GltfWriter;
 using nlohmann::json;
+
+constexpr double kHalfPi = 1.5707963267948966;
 
 // A tetrahedron: four corners spanning each axis, so a pose error shows at some vertex.
 const std::vector<glm::dvec3> kTetra = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -875,7 +878,7 @@ TEST(GltfLoader, PrimitiveModesAreReadOrReported) {
 
 // NORMAL and TEXCOORD_0 become corner attributes (normals by the inverse transpose of the folded node
 // matrix, so they stay normal to the scaled surface), baseColorTexture names its image file beside the
-// .gltf, KHR_texture_transform is ignored with a warning, and a texCoord other than 0 is refused.
+// .gltf, KHR_texture_transform is applied to the UVs, and a texCoord other than 0 is refused.
 TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
     const auto folder = testing::validatedAssetDir();
     testing::writeRgb8Png(folder / "textured_quad.png", 2, 2, {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255});
@@ -890,7 +893,7 @@ TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
         json info = {{"index", 0}};
         if (tex_coord != 0) info["texCoord"] = tex_coord;
         if (transform) {
-            info["extensions"] = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
+            info["extensions"] = {{"KHR_texture_transform", {{"offset", {0.25, 0.5}}, {"rotation", kHalfPi}, {"scale", {2, 3}}}}};
             w.doc()["extensionsUsed"] = {"KHR_texture_transform"};
         }
         w.doc()["images"] = json::array({{{"uri", "textured_quad.png"}}});
@@ -909,10 +912,15 @@ TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
     const Mesh& m = s.objects[0].mesh;
     ASSERT_EQ(m.corner_normals.size(), 6u);
     ASSERT_EQ(m.corner_uvs.size(), 6u);
-    // Corner 1 is vertex 2 (UV (1, 0), normal (0, h, -h)); corner 4 is vertex 3 (UV (0, 0)).
-    EXPECT_EQ(m.corner_uvs[1], glm::dvec2(1, 0));
-    EXPECT_EQ(m.corner_uvs[4], glm::dvec2(0, 0));
-    EXPECT_EQ(m.corner_uvs[0], glm::dvec2(0, 1));
+    // Corner 1 is vertex 2 (UV (1, 0), normal (0, h, -h)); corner 4 is vertex 3 (UV (0, 0)). The transform
+    // by hand, per the extension's T R S: scale (u, v) -> (2u, 3v), rotate a quarter turn with R = [0 1;
+    // -1 0] -> (3v, -2u), offset -> (3v + 0.25, -2u + 0.5). 1e-12: cos(pi/2) is 6e-17, not 0.
+    const auto near = [](glm::dvec2 a, glm::dvec2 b) { return glm::length(a - b) < 1e-12; };
+    EXPECT_PRED2(near, m.corner_uvs[1], glm::dvec2(0.25, -1.5));
+    EXPECT_PRED2(near, m.corner_uvs[4], glm::dvec2(0.25, 0.5));
+    EXPECT_PRED2(near, m.corner_uvs[0], glm::dvec2(3.25, 0.5));
+    const GltfScene plain = loadValid(build(0, false), "textured_quad_plain");
+    EXPECT_EQ(plain.objects.at(0).mesh.corner_uvs[1], glm::dvec2(1, 0));
     // Scale (2, 1, 1): the inverse transpose divides x by 2. The normal (h, 0, -h) becomes (h/2, 0, -h); it
     // must stay perpendicular to the scaled surface's tangents. 1e-7: float attributes.
     const glm::dvec3 n0 = glm::normalize(m.corner_normals[0]);
@@ -922,9 +930,24 @@ TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
     const Material& mat = s.materials[static_cast<std::size_t>(s.objects[0].material)];
     EXPECT_EQ(mat.base_color, glm::dvec3(0.5));
     EXPECT_EQ(std::filesystem::path(mat.image.file), folder / "textured_quad.png");
-    EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
-        return w.find("KHR_texture_transform is ignored") != std::string::npos;
-    }));
+    EXPECT_TRUE(s.warnings.empty());
+
+    // An emissive texture transformed otherwise than the base colour's: one set of UVs cannot serve both.
+    GltfWriter two = build(0, true);
+    two.doc()["materials"][0]["emissiveFactor"] = {1, 1, 1};
+    two.doc()["materials"][0]["emissiveTexture"] = {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}};
+    const auto two_file = folder / "two_transforms.gltf";  // beside its image; valid glTF, refused here
+    two.writeGltf(two_file);
+    try {
+        loadGltfScene(two_file, request());
+        ADD_FAILURE() << "two transforms loaded";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Scene);
+        EXPECT_NE(e.message().find("/materials/0/emissiveTexture/extensions/KHR_texture_transform: differs from the "
+                                   "baseColorTexture's"),
+                  std::string::npos)
+            << e.what();
+    }
 
     const auto file = std::filesystem::path(::testing::TempDir()) / "texcoord1.gltf";
     build(1, false).writeGltf(file);
@@ -936,6 +959,49 @@ TEST(GltfLoader, NormalsUvsAndBaseColorTextureAreRead) {
         EXPECT_NE(e.message().find("/materials/0/pbrMetallicRoughness/baseColorTexture: texCoord 1 is not supported"),
                   std::string::npos)
             << e.what();
+    }
+}
+
+// Blender 3.4's export of a textured mesh without a UV map: the material names a baseColorTexture (or an
+// emissiveTexture) but the primitive has POSITION and NORMAL only. Refused at the primitive's material,
+// where the Khronos validator reports MESH_PRIMITIVE_TOO_FEW_TEXCOORDS; with TEXCOORD_0 it loads.
+TEST(GltfLoader, TextureOnAPrimitiveWithoutTexcoordsIsRefused) {
+    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_gltf_no_uvs";
+    std::filesystem::create_directories(dir);
+    testing::writeRgb8Png(dir / "checker.png", 2, 1, {255, 255, 255, 0, 0, 0});
+    const auto build = [](const json& material, bool uvs) {
+        GltfWriter w;
+        const int pos = w.addFloats({0, 0, 0, 1, 0, 0, 1, 1, 0}, "VEC3", 34962);
+        const int normal = w.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 34962);
+        json attributes = {{"POSITION", pos}, {"NORMAL", normal}};
+        if (uvs) attributes["TEXCOORD_0"] = w.addFloats({0, 0, 1, 0, 1, 1}, "VEC2", 34962);
+        w.doc()["images"] = json::array({{{"uri", "checker.png"}}});
+        w.doc()["textures"] = json::array({{{"source", 0}}});
+        // A plain material first, so the textured one's index (1) shows in the message.
+        w.doc()["materials"] = json::array({{{"name", "plain"}}, material});
+        w.doc()["meshes"].push_back(
+            {{"primitives", json::array({{{"attributes", attributes}, {"indices", w.addIndices({0, 1, 2}, 5123)},
+                                          {"material", 1}}})}});
+        setScene(w, {addNode(w, {{"name", "floor"}, {"mesh", 0}})});
+        return w;
+    };
+    const json base = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}};
+    const json glow = {{"emissiveFactor", {1, 1, 1}}, {"emissiveTexture", {{"index", 0}}}};
+    for (const auto& [name, material, texture] :
+         {std::tuple{"base", base, "baseColorTexture"}, std::tuple{"glow", glow, "emissiveTexture"}}) {
+        build(material, true).writeGltf(dir / (std::string(name) + "_uvs.gltf"));
+        EXPECT_EQ(loadGltfScene(dir / (std::string(name) + "_uvs.gltf"), request()).objects.size(), 1u) << name;
+        build(material, false).writeGltf(dir / (std::string(name) + ".gltf"));
+        try {
+            loadGltfScene(dir / (std::string(name) + ".gltf"), request());
+            ADD_FAILURE() << name << " loaded";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ExitCode::Scene);
+            EXPECT_NE(std::string(e.what()).find(std::string(name) + ".gltf: /meshes/0/primitives/0/material: material 1's " +
+                                                 texture + " reads TEXCOORD_0, which the primitive lacks"),
+                      std::string::npos)
+                << e.what();
+        }
     }
 }
 
