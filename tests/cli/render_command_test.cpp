@@ -77,14 +77,19 @@ TEST(RenderCommand, ReferenceErrorGoesToTheStats) {
                                " --set film.height=18 --set render.samples=4 --progress none";
     const std::string job = std::string(CLIPBLUR_BINARY) + " render " + CLIPBLUR_SOURCE_DIR + "/configs/default.yaml";
     const std::string quiet = " > " + (dir / "out.txt").string() + " 2>&1";
-    ASSERT_EQ(std::system((job + common + " --out " + a + quiet).c_str()), 0);
-    ASSERT_EQ(std::system((job + common + " --out " + b + " --reference " + a + quiet).c_str()), 0);
+    const auto output = [&dir] {
+        std::ifstream in(dir / "out.txt");
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    ASSERT_EQ(std::system((job + common + " --out " + a + quiet).c_str()), 0) << output();
+    ASSERT_EQ(std::system((job + common + " --out " + b + " --reference " + a + quiet).c_str()), 0) << output();
     std::ifstream same(dir / "b.stats.json");
     std::string text((std::istreambuf_iterator<char>(same)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("\"rmse\": 0.0"), std::string::npos) << text;
 
     const std::string c = (dir / "c.exr").string();
-    ASSERT_EQ(std::system((job + common + " --set render.seed=9 --out " + c + " --reference " + a + quiet).c_str()), 0);
+    ASSERT_EQ(std::system((job + common + " --set render.seed=9 --out " + c + " --reference " + a + quiet).c_str()), 0)
+        << output();
     std::ifstream other(dir / "c.stats.json");
     text.assign((std::istreambuf_iterator<char>(other)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("\"rmse\""), std::string::npos);

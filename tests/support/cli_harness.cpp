@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -26,11 +27,10 @@ std::string captureShell(const std::string& command) {
 }
 
 std::filesystem::path freshTempDir(const std::string& name) {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
+    // mkdtemp: unique even where processes of another PID namespace (another CI job) share the folder.
+    std::string pattern = (std::filesystem::temp_directory_path() / (name + "_XXXXXX")).string();
+    if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp " + pattern + " failed");
+    return pattern;
 }
 
 float ExrPixels::at(const std::string& name, int x, int y) const {

@@ -14,8 +14,8 @@ int runShell(const std::string& command);
 // Runs a shell command line and returns what it wrote to stdout.
 std::string captureShell(const std::string& command);
 
-// An empty folder under the system's temporary folder, named `name` and this process's id: ctest runs
-// test processes side by side (the glTF fixture runs tests that also run alone), so no two share one.
+// A new empty folder under the temporary folder (TMPDIR), named `name` and a unique suffix: ctest runs
+// test processes side by side, so no two may share one.
 std::filesystem::path freshTempDir(const std::string& name);
 
 // A whole EXR read as float, channels interleaved as in the file.
