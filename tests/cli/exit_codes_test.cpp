@@ -92,7 +92,7 @@ TEST(ExitCodes, JobAndSceneErrorsOfValidateAndRender) {
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "mesh.obj:4:1: a face needs at least 3 vertices"},
     };
     for (const auto& [text, says] : bad_objs) {
-        for (const std::string command : {validate, std::string(CLIPBLUR_BINARY) + " render --out " +
+        for (const std::string& command : {validate, std::string(CLIPBLUR_BINARY) + " render --out " +
                                                          (dir / "o.exr").string() + " "}) {
             SCOPED_TRACE(command + text);
             EXPECT_EQ(runShell(command + objJob(dir, text).string() + quiet), 4);
