@@ -44,8 +44,10 @@ bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<
 // How far surfaces that move differently in the world move relative to each other where they can meet in
 // `tile` (eq. 24's pixel rule, for what one hides of another): for every two fragment triangles of
 // different motion groups (`group`) whose swept boxes overlap within the tile, the largest difference of
-// their open-to-close displacements over that overlap. Each displacement is an affine map
-// (FragmentMotion::displacement), so the difference is affine and peaks at a corner of the overlap.
+// their open-to-close displacements at the overlap's corners. Each is taken at the point of its source
+// triangle nearest to the corner (FragmentMotion::displacementNear): on the triangle the map is affine and
+// within its corners' exact displacements, beyond it an extrapolation, which reached 6000 px at a sphere's
+// silhouette (configs/default.yaml at 64x36: every tile capped at 256 re-clips).
 // Surfaces that cross in mid-segment count though they are apart at both ends. The pairs come from a
 // sweep along x over the boxes sorted by their left edge; a tile with one group has none.
 template <class GroupOf>
@@ -80,8 +82,8 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
             if (meet.empty()) continue;
             for (const glm::dvec2& corner :
                  {meet.lo, meet.hi, glm::dvec2(meet.lo.x, meet.hi.y), glm::dvec2(meet.hi.x, meet.lo.y)})
-                relative = std::max(relative,
-                                    glm::length(item.motion->displacement(corner) - other->motion->displacement(corner)));
+                relative = std::max(relative, glm::length(item.motion->displacementNear(corner) -
+                                                          other->motion->displacementNear(corner)));
         }
         active.push_back(&item);
     }

@@ -154,7 +154,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
     if (ends == 3 && vertices.size() == 3) {
         affineMotion(open, close, out);
-        out.open_to_close = sourceMap(vertices[0]);
+        sourceMap(vertices[0], out);
     }
     if (out.crosses_near) {
         out.swept = RasterBounds::everything();
@@ -166,7 +166,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
     return out;
 }
 
-glm::dmat2 ShutterPathSampler::sourceMap(const MeshPoint& point) const {
+void ShutterPathSampler::sourceMap(const MeshPoint& point, FragmentMotion& out) const {
     std::array<glm::dvec2, 3> open{}, close{};
     for (int i = 0; i < 3; ++i) {
         MeshPoint corner = point;
@@ -174,14 +174,18 @@ glm::dmat2 ShutterPathSampler::sourceMap(const MeshPoint& point) const {
         corner.b[i] = 1.0;
         const ProjectedPoint a = project(nodes_.front().snapshot, *scene_, corner),
                              b = project(nodes_.back().snapshot, *scene_, corner);
-        if (a.behind || b.behind) return glm::dmat2(1.0);
+        if (a.behind || b.behind) return;
         open[static_cast<std::size_t>(i)] = a.raster;
         close[static_cast<std::size_t>(i)] = b.raster;
     }
     // A face seen edge-on has no map across it; one nearly edge-on still has an exact one for motion
     // that is affine in the image (a turn about the view axis), and its pieces are too thin to matter
     // where it is not.
-    return openToClose(open, close, 1e-3).value_or(glm::dmat2(1.0));
+    const std::optional<glm::dmat2> map = openToClose(open, close, 1e-3);
+    if (!map) return;
+    out.open_to_close = *map;
+    out.source_open = open;
+    out.has_source = true;
 }
 
 int subframeCount(double pixels, int max_subframes, bool* capped) {

@@ -1,11 +1,13 @@
 #pragma once
 
+#include <array>
 #include <limits>
 #include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "renderer/geometry/closest_point.h"
 #include "renderer/geometry/raster_bounds.h"
 #include "renderer/propagation/surface_path.h"
 #include "scene/scene.h"
@@ -37,6 +39,11 @@ struct FragmentMotion {
     // end + open_to_close (x - start) at close, exactly for motion that is affine in the image. The
     // identity when the source triangle is seen edge-on or reaches the camera plane.
     glm::dmat2 open_to_close{1.0};
+    // That source triangle's corners at open (raster), when open_to_close was fitted to them. Outside
+    // the triangle its map is an extrapolation, and for a nearly edge-on face (a sphere's silhouette) one
+    // of thousands of pixels: displacementNear stays on the triangle.
+    std::array<glm::dvec2, 3> source_open{};
+    bool has_source = false;
     // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
     // between samples) as the swept box is. Depth is affine over a planar fragment, so every point of it
     // stays within this range: what decides whether one surface stays in front of another.
@@ -45,6 +52,11 @@ struct FragmentMotion {
 
     // How far the surface point at raster x at open moves by close, as open_to_close has it.
     glm::dvec2 displacement(const glm::dvec2& x) const { return end + open_to_close * (x - start) - x; }
+    // The displacement of the source triangle's point nearest to x: on the triangle the map interpolates
+    // its corners' exact displacements, so this stays within their range wherever x is.
+    glm::dvec2 displacementNear(const glm::dvec2& x) const {
+        return displacement(has_source ? closestPointInTriangle(source_open, x) : x);
+    }
 };
 
 // Samples the exact vertex paths over the shutter [t0, t1]. The shutter is cut at every camera,
@@ -71,7 +83,8 @@ public:
     const std::vector<double>& breakpoints() const { return breakpoints_; }  // t0, keys inside, t1
 
 private:
-    glm::dmat2 sourceMap(const MeshPoint& point) const;  // FragmentMotion::open_to_close of point's triangle
+    // FragmentMotion::open_to_close of point's triangle, and its corners at open (source_open).
+    void sourceMap(const MeshPoint& point, FragmentMotion& out) const;
 
     struct Node {
         MotionSnapshot snapshot;

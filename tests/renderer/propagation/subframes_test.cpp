@@ -273,6 +273,62 @@ TEST(Subframes, DisplacementOfASliverFollowsItsTurningTriangle) {
     }
 }
 
+// A face nearly edge-on (a sphere's silhouette) turning to face the camera: its source map is fitted to a
+// sliver, so beyond the triangle it extrapolates to hundreds of pixels. displacementNear takes the
+// triangle's nearest point, where the map interpolates the corners' moves: never more than the largest of
+// them, wherever in the swept box it is asked. By hand: the object turns about its x axis and sits 10
+// units ahead, raster = (W/2 - k x / z, H/2 - k y / z). The map is anchored at the piece's own mean
+// vertex (FragmentMotion::start, end), which a projective motion moves off the corners' affine fit by
+// `anchor`, computed here from the same hand projection; 1e-9 px is rounding.
+TEST(Subframes, DisplacementNearAnEdgeOnFaceStaysWithinItsCornersMoves) {
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    const std::array<glm::dvec3, 3> corners{glm::dvec3(-1.0, 0.0, 0.0), glm::dvec3(1.0, 0.0, 0.0),
+                                            glm::dvec3(0.0, 0.02, 2.0)};
+    constexpr double kTurn = 0.2;  // rad
+    Object tri = testing::triangleObject(corners[0], corners[1], corners[2]);
+    testing::addTransformKey(tri, 0.0, {0, 0, 10});
+    testing::addTransformKey(tri, 1.0, {0, 0, 10}, {1, 0, 0}, kTurn);
+    scene.objects.push_back(tri);
+    const double k = proj.pixelsPerUnit();
+    const auto raster = [&](const glm::dvec3& p, double angle) {
+        const glm::dvec3 q(p.x, p.y * std::cos(angle) - p.z * std::sin(angle), p.y * std::sin(angle) + p.z * std::cos(angle) + 10.0);
+        return glm::dvec2(0.5 * scene.film.width - k * q.x / q.z, 0.5 * scene.film.height - k * q.y / q.z);
+    };
+    std::array<glm::dvec2, 3> open{}, close{};
+    double largest = 0.0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        open[i] = raster(corners[i], 0.0);
+        close[i] = raster(corners[i], kTurn);
+        largest = std::max(largest, glm::length(close[i] - open[i]));
+    }
+    const glm::dmat2 fit = glm::dmat2(close[1] - close[0], close[2] - close[0]) *
+                           glm::inverse(glm::dmat2(open[1] - open[0], open[2] - open[0]));
+    const std::array<glm::dvec3, 3> bary{glm::dvec3(0.5, 0.3, 0.2), glm::dvec3(0.3, 0.5, 0.2), glm::dvec3(0.4, 0.3, 0.3)};
+    std::array<MeshPoint, 3> piece{};
+    glm::dvec2 start(0.0), end(0.0);
+    for (std::size_t i = 0; i < 3; ++i) {
+        piece[i] = MeshPoint{0, 0, bary[i]};
+        const glm::dvec3 p = bary[i].x * corners[0] + bary[i].y * corners[1] + bary[i].z * corners[2];
+        start += raster(p, 0.0) / 3.0;
+        end += raster(p, kTurn) / 3.0;
+    }
+    const double anchor = glm::length(end - (close[0] + fit * (start - open[0])));
+    const FragmentMotion fm = ShutterPathSampler(scene, proj, 0.0, 1.0, 8).measure(piece);
+    ASSERT_TRUE(fm.has_source);
+    for (std::size_t i = 0; i < 3; ++i)
+        EXPECT_LT(glm::length(fm.displacementNear(open[i]) - (close[i] - open[i])), anchor + 1e-9) << i;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> ux(fm.swept.lo.x - 4.0, fm.swept.hi.x + 4.0), uy(fm.swept.lo.y - 4.0, fm.swept.hi.y + 4.0);
+    double extrapolated = 0.0;
+    for (int i = 0; i < 200; ++i) {
+        const glm::dvec2 x(ux(rng), uy(rng));
+        EXPECT_LE(glm::length(fm.displacementNear(x)), largest + anchor + 1e-9) << i;
+        extrapolated = std::max(extrapolated, glm::length(fm.displacement(x)));
+    }
+    EXPECT_GT(extrapolated, 10.0 * largest) << "the map beyond the triangle is what the test guards against";
+}
+
 TEST(Subframes, MotionAfterTheShutterDoesNotCount) {
     // Keys at the shutter close and later: still during [0, 1], fast afterwards.
     Scene scene = testing::stillCameraScene();
