@@ -11,8 +11,9 @@ CLIPBLUR_SLURM=1 bash scripts/setup.sh
 bash scripts/build.sh release
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 bash scripts/build.sh sanitize
+# Slow and accuracy labels run in the release build only (tests/CMakeLists.txt says why).
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE slow
+  ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE "slow|accuracy"
 # The job and OBJ loaders under libFuzzer (clang, ASan+UBSan), the bounded time split between them,
 # seeded from configs/ and the repo's .obj files.
 bash scripts/fuzz.sh "${CLIPBLUR_FUZZ_SECONDS:-60}"
