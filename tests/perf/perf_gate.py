@@ -2,8 +2,9 @@
 """Performance regression gate.
 
 Renders tests/perf/gate_scene.yaml with the clipped method (point subframes and sweep integration)
-and with a stochastic baseline, alternating, several times, and checks against
-tests/perf/thresholds.json:
+and with a stochastic baseline, alternating, several times, then each many-object bench scene
+(configs/bench/many/, made after the tuning) once with sweep integration and automatic re-clips, and
+checks against tests/perf/thresholds.json:
   - the RATIOS min(clipped CPU seconds) / min(stochastic CPU seconds) and the same for sweep. CPU
     seconds are the render's own (stats `seconds.cpu`, getrusage around the frame, process start-up
     excluded), so a neighbour that competes for the cores stretches wall clock but hardly moves them.
@@ -15,7 +16,9 @@ tests/perf/thresholds.json:
     traversal and the clipped scalar code differ between CPU models, so each model has its own
     committed ratio;
   - EXACT noise-free counts from the stats (subframes, fragments, candidates, rays), which change
-    only when the algorithm does, and must not differ between repeats.
+    only when the algorithm does, and must not differ between repeats. The many-object scenes are
+    gated by their counts only (re-clips, positions, fragments: where a wrong re-clip rule shows as
+    a 10x count, as it did before 3da2aca); their CPU seconds are printed.
 
     tests/perf/perf_gate.py --clipblur build/clipblur                # short mode (CI, < 1 min)
     tests/perf/perf_gate.py --clipblur build/clipblur --mode full    # also writes a JSON record
@@ -57,6 +60,10 @@ EXACT_COUNTS = {
               "sweep_spilled_pixels", "sweep_unswept_fragments"],
     "stochastic": ["triangles", "rays", "primary_rays", "samples", "max_time_steps", "vertex_evaluations"],
 }
+# The many-object scenes' counts (sweep, automatic re-clips), rendered at the mode's size.
+MANY_SCENES = ["particles", "street", "deforming", "building_dolly"]
+MANY_COUNTS = ["segments", "frame_sets", "subframes_total", "subframes_max_per_tile", "capped_tiles",
+               "reclip_fragments", "sweep_positions", "sweep_spilled_pixels", "sweep_unswept_fragments"]
 # What each gate method renders, on top of the scene's own settings.
 METHOD_SETTINGS = {"clipped": ["render.method=clipped"],
                    "sweep": ["render.method=clipped", "render.time_integration=sweep"],
@@ -75,11 +82,11 @@ class GateError(RuntimeError):
     pass
 
 
-def render(clipblur, method, mode, workdir, index, threads, cpu):
+def render(clipblur, method, mode, workdir, index, threads, cpu, scene=SCENE):
     m = MODES[mode]
-    image = Path(workdir) / f"{method}_{index}.exr"
+    image = Path(workdir) / f"{scene.stem}_{method}_{index}.exr"
     stats = image.with_suffix(".stats.json")
-    cmd = [clipblur, "render", str(SCENE), "--out", str(image), "--stats", str(stats), "--progress", "none",
+    cmd = [clipblur, "render", str(scene), "--out", str(image), "--stats", str(stats), "--progress", "none",
            "--threads", str(threads), "--set", f"film.width={m['width']}",
            "--set", f"film.height={m['height']}", "--set", f"render.samples={m['samples']}"]
     for setting in METHOD_SETTINGS[method]:
@@ -111,6 +118,10 @@ def measure(clipblur, mode, threads, counts_only=False):
                 if method in counts and counts[method] != c:
                     raise GateError(f"{method} counts differ between repeats: {counts[method]} vs {c}")
                 counts[method] = c
+        for name in MANY_SCENES:
+            s = render(clipblur, "sweep", mode, workdir, 0, threads, cpu, REPO / "configs/bench/many" / f"{name}.yaml")
+            counts[f"many/{name}"] = {k: s["counts"].get(k) for k in MANY_COUNTS}
+            seconds[f"many/{name}"] = [s["seconds"]["cpu"]]
     least = {m: min(v) for m, v in seconds.items()}
     return {"cpu_seconds": seconds, "min_cpu_seconds": least, "pinned_cpu": cpu,
             "ratio": least["clipped"] / least["stochastic"],
@@ -144,7 +155,8 @@ def timing_limits(expected, model):
 
 def check(result, expected, counts_only, model):
     failures = []
-    for method, keys in EXACT_COUNTS.items():
+    gated = dict(EXACT_COUNTS, **{f"many/{name}": MANY_COUNTS for name in MANY_SCENES})
+    for method, keys in gated.items():
         want = expected.get("counts", {}).get(method, {})
         got = result["counts"][method]
         for k in keys:
@@ -195,6 +207,8 @@ def main():
         print(f"perf gate ({args.mode}, {model}, renders on CPU {result['pinned_cpu']}): least CPU seconds of {len(result['cpu_seconds']['clipped'])}: clipped "
               f"{least['clipped']:.4f}, sweep {least['sweep']:.4f}, stochastic {least['stochastic']:.4f}; "
               f"ratios {result['ratio']:.3f} and {result['ratio_sweep']:.3f}")
+        print("perf gate: many-object scenes, sweep, CPU seconds: " +
+              ", ".join(f"{n} {least['many/' + n]:.3f}" for n in MANY_SCENES))
 
         path = Path(args.thresholds)
         table = json.loads(path.read_text()) if path.is_file() else {}
