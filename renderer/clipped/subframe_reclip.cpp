@@ -314,13 +314,16 @@ ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
     for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
     polygon.close();
     scratch.textured.clear();
-    // Both frames' copies of one triangle of a still object shade alike (Shader::sameFromBoth): one
-    // shading serves the pair, the mix weights summing to 1.
+    // Every piece is shaded where its surface is at the re-clip's time, lit and seen as it is then: the
+    // frames' colours mixed in proportion to time would follow lighting that changes during the shutter
+    // (a face turning under a light, a limb bending) only along a chord, an error no re-clip removes.
+    const ShadingFrame now{pass.at.snapshot.time, pass.at.snapshot.camera.position};
+    // So both frames' copies of one triangle shade alike: one shading serves the pair, the mix weights
+    // summing to 1.
     const auto shadeOnce = [&] {
         const SourceTriangle& a = scratch.sources[fragment.sources[0].source];
         const SourceTriangle& b = scratch.sources[fragment.sources[1].source];
-        return a.object == b.object && a.triangle == b.triangle &&
-               pass.tile.shader.sameFromBoth(a.object, a.triangle, layers.eye[0], layers.eye[1]);
+        return a.object == b.object && a.triangle == b.triangle;
     };
     const bool shade_once = fragment.source_count == 2 && shadeOnce();
     for (int k = 0; pass.out.track_objects && k < fragment.source_count; ++k)
@@ -332,10 +335,8 @@ ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
             shaded.motion += fragment.mix(k) * glm::dvec2(layers.motion[ref.layer][ref.index]);
         if (shade_once && k == 1) continue;
         const double m = shade_once ? 1.0 : fragment.mix(k);
-        // The piece is where this source's surface is now; it is shaded as its frame saw it.
         scratch.pieces.clear();
-        shadeFragment(polygon, {scratch.screen[s], scratch.sources[s]}, pass.tile.shader,
-                      {layers.time[ref.layer], layers.eye[ref.layer]}, scratch.pieces);
+        shadeFragment(polygon, {scratch.screen[s], scratch.sources[s]}, pass.tile.shader, now, scratch.pieces);
         pass.stats.shaded_pieces += static_cast<long long>(scratch.pieces.size());
         glm::dvec3 sum(0.0);
         double area = 0.0;

@@ -165,8 +165,8 @@ struct ReclipTime {
 // Sections 3.2-3.4 for one (tile, subframe): moves every referenced fragment triangle to the snapshot's
 // time along its exact path (frame-0 ones forward, frame-1 ones backward: the same function of time),
 // clips pieces crossing the camera plane in 3D, re-clips the union per pixel into non-overlapping
-// fragments (equal range: one kept, colours mixed with weights 1-f and f), shades each piece as its frame
-// saw it, and reduces each pixel. With a sweep the fragments of sweep->resolve are swept over the
+// fragments (equal range: one kept, colours mixed with weights 1-f and f), shades each piece at the
+// snapshot's time, and reduces each pixel. With a sweep the fragments of sweep->resolve are swept over the
 // interval into sweep->box; without, the tile's pixels get the point sample at the snapshot's time.
 void reclipSubframe(const TileReclip& tile, const ReclipTime& at, ReclipScratch& scratch, TileSums& out,
                     ReclipStats& stats);
