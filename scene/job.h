@@ -14,9 +14,11 @@ enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
 enum class PathMethod { Exact, Euler, RK4 };
 enum class TimeIntegration { Subframes, Sweep };
 // How a clipped fragment piece gets its one colour: shaded at its area centroid with an image texture
-// filtered over the whole piece, or cut into a fan of triangles about the centroid, each shaded that
-// way, their colours averaged by area (as many shading points as the piece has vertices).
-enum class FragmentShading { Centroid, Fan };
+// filtered over the whole piece (Centroid), or cut into a fan of triangles about the centroid, each shaded
+// that way, their colours averaged by area (Fan: as many shading points as the piece has vertices), or
+// shaded at its centroid with an image texture's bilinear image integrated exactly over the piece's
+// preimage in (s, t) (Integral).
+enum class FragmentShading { Centroid, Fan, Integral };
 
 // The name a job file uses for the method.
 const char* methodName(Method method);

@@ -127,6 +127,19 @@ struct UvFunctions {
         }
         return out;
     }
+
+    // The piece's preimage in (s, t): its vertices carried exactly (the map is projective, so the preimage
+    // of a convex polygon is the convex polygon of the carried vertices).
+    void preimage(const ConvexPolygon& piece, const glm::dvec2& origin, const Affine& inv_depth,
+                  ConvexPolygon& out) const {
+        out.clear();
+        for (int k = 0; k < piece.n; ++k) {
+            const glm::dvec2 d = piece.v[k] - origin;
+            const double w = inv_depth(d);
+            out.push({uv_over_z[0](d) / w, uv_over_z[1](d) / w});
+        }
+        out.close();
+    }
 };
 
 struct ShadingCall {
@@ -137,9 +150,11 @@ struct ShadingCall {
     const glm::dvec3& eye;
     const TriangleFunctions& f;
     const UvFunctions& uv;
+    bool integral;  // the `integral` rule: image textures averaged exactly over the piece's preimage
 };
 
-// One colour for a piece: the surface at its area centroid, the texture filtered over its bounding box.
+// One colour for a piece: the surface at its area centroid, the texture filtered over its bounding box
+// or, under the `integral` rule, averaged over its preimage in (s, t).
 glm::dvec3 shadeAt(const ConvexPolygon& piece, const ShadingCall& c) {
     const glm::dvec2 at = centroid(piece);
     const glm::dvec3 b = c.f.bary(at, c.screen);
@@ -149,6 +164,13 @@ glm::dvec3 shadeAt(const ConvexPolygon& piece, const ShadingCall& c) {
     SurfaceGeometry surface = c.shader.geometry(point);
     const RasterBounds box = piece.bounds();
     surface.footprint = c.uv.footprint(at - c.f.origin, box.hi - box.lo, c.f.inv_depth);
+    // The mean over the preimage weights (s, t) uniformly, where the raster pixel weights it by the map's
+    // Jacobian, which varies over a piece by a few percent at most (docs/design.md).
+    ConvexPolygon st;
+    if (c.integral) {
+        c.uv.preimage(piece, c.f.origin, c.f.inv_depth, st);
+        surface.texture_piece = &st;
+    }
     return c.shader.shade(point, surface, c.eye);
 }
 
@@ -233,7 +255,8 @@ void shadeFragment(const ConvexPolygon& polygon, const FragmentSurface& on, cons
         ShadedPiece piece;
         piece.polygon = cell;
         piece.area = area;
-        const ShadingCall call{screen, source, shader, time, eye, f, uv};
+        const ShadingCall call{screen, source, shader, time, eye, f, uv,
+                               shader.fragmentShading() == FragmentShading::Integral};
         piece.colour = fan ? shadeFan(cell, call) : shadeAt(cell, call);
         out.push_back(piece);
     }
