@@ -59,7 +59,7 @@ struct RenderSettings {
     // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel.
     TimeIntegration time_integration = TimeIntegration::Subframes;
     double sweep_spacing = 1.0;
-    FragmentShading fragment_shading = FragmentShading::Centroid;
+    FragmentShading fragment_shading = FragmentShading::Integral;
     int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)
     bool shadows = false;
     std::uint64_t seed = 0;

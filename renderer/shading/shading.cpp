@@ -198,7 +198,8 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surfa
 
 glm::dvec3 Shader::imageValue(const ImageTextures::Image& image, const TexelPyramid* pyramid,
                               const SurfaceGeometry& surface) const {
-    if (pyramid && surface.texture_piece) return textureMean(*pyramid, *surface.texture_piece);
+    if (pyramid && surface.texture_piece)
+        return textureMean(*pyramid, surface.texture_piece->st, surface.texture_piece->weight);
     return ImageTextures::shared().lookup(image, surface.uv, surface.footprint);
 }
 

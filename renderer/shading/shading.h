@@ -6,9 +6,8 @@
 #include <glm/glm.hpp>
 
 #include "renderer/frame_motion.h"
-#include "renderer/geometry/convex_polygon.h"
 #include "renderer/shading/image_textures.h"
-#include "renderer/shading/texel_pyramid.h"
+#include "renderer/shading/texture_integral.h"
 #include "scene/job.h"
 #include "scene/scene.h"
 
@@ -37,7 +36,7 @@ struct SurfaceGeometry {
     TextureFootprint footprint;       // the (s, t) extent the colour stands for; zero: a point
     // The `integral` rule: the (s, t) polygon the colour stands for; image textures are averaged over it
     // exactly (renderer/shading/texture_integral.h) instead of looked up at uv over the footprint.
-    const ConvexPolygon* texture_piece = nullptr;
+    const TexturePiece* texture_piece = nullptr;
 };
 
 

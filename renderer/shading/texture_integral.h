@@ -27,13 +27,28 @@ inline constexpr double kIntegralCellBudget = 32.0;
 // the perimeter + 1, in texels); the coarsest level when none does. `pyramid` has at least one level.
 int integralLevel(const TexelPyramid& pyramid, const ConvexPolygon& st, double cell_budget);
 
-// The mean of `level`'s bilinear image over `st`; for a polygon of zero area (a degenerate UV map), the
-// image at the mean of its vertices.
-glm::dvec3 bilinearMean(const TexelLevel& level, const ConvexPolygon& st);
+// A weight affine in (s, t), 1 + slope . (st - at), positive over the polygon it weighs. A raster piece's
+// preimage is weighted by the map's Jacobian (the raster area per unit (s, t)), which goes as 1/z^3 for
+// the depth z, affine in (s, t) on a triangle: linearised about the piece's centroid, the weight that
+// turns the mean over (s, t) into the mean over the raster piece to second order in z's change over it.
+struct AffineWeight {
+    glm::dvec2 at{0.0};
+    glm::dvec2 slope{0.0};
+};
+
+// The weighted mean of `level`'s bilinear image over `st` (the plain mean by default); for a polygon of
+// zero area (a degenerate UV map), the image at the mean of its vertices.
+glm::dvec3 bilinearMean(const TexelLevel& level, const ConvexPolygon& st, const AffineWeight& weight = {});
 
 // bilinearMean at integralLevel.
-glm::dvec3 textureMean(const TexelPyramid& pyramid, const ConvexPolygon& st,
+glm::dvec3 textureMean(const TexelPyramid& pyramid, const ConvexPolygon& st, const AffineWeight& weight = {},
                        double cell_budget = kIntegralCellBudget);
+
+// The (s, t) polygon a piece's colour stands for and its weight: what the `integral` rule averages over.
+struct TexturePiece {
+    ConvexPolygon st;
+    AffineWeight weight;
+};
 
 // `level`'s bilinear image at (s, t): what a point lookup at level 0 returns (in double).
 glm::dvec3 bilinearAt(const TexelLevel& level, const glm::dvec2& st);

@@ -3,8 +3,9 @@
 (render.fragment_shading: centroid, fan, integral) beside the stochastic method's ladder for scale.
 
 `globe` (default): configs/shading/globe.yaml, still and spinning; writes docs/img/fragment_shading.{png,dat}.
-`shot`: the shipped shot's frame (configs/shot.yaml) still (a zero-length shutter), no chart; pass
---width 160 --height 90 --reference-spp 1024 for the figures in docs/design.md. Prints a table.
+`shot`: the shipped shot's frame (configs/shot.yaml) still (a zero-length shutter) and moving (its own
+shutter), no chart; pass --width 160 --height 90 --reference-spp 1024 for the figures in docs/design.md.
+Prints a table.
 
     scripts/shading/fragment_rule.py [--scene globe|shot] [--width 320 --height 180 --reference-spp 2048]
 """
@@ -20,7 +21,8 @@ RULES = ("centroid", "fan", "integral")
 SCENES = {
     "globe": (benchlib.REPO / "configs" / "shading" / "globe.yaml",
               {"still": {"objects.0.transform": "[]"}, "spinning": {}}),
-    "shot": (benchlib.REPO / "configs" / "shot.yaml", {"still": {"shutter.open": 0, "shutter.close": 0}}),
+    "shot": (benchlib.REPO / "configs" / "shot.yaml",
+             {"still": {"shutter.open": 0, "shutter.close": 0}, "moving": {}}),
 }
 
 
@@ -55,7 +57,7 @@ def main():
             seconds = stats["seconds"]["total"]
             shaded = stats.get("counts", {}).get("shaded_points", "")
             print(f"| {args.scene} {name} | {label.split(' ', 1)[1]} | {seconds:.2f} | {shaded} | "
-                  f"{error['rmse']:.5f} | {error['max_abs']:.4f} |")
+                  f"{error['rmse']:.2g} | {error['max_abs']:.2g} |")
             points.setdefault(label if "stochastic" in label else f"{name} clipped", []).append(
                 (seconds, error["rmse"], tag))
         series += list(points.items())
