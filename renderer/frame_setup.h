@@ -31,7 +31,7 @@ struct FrameSetup {
 struct FrameBuildOptions {
     int tile_size = 16;
     bool shadows = false;  // the shader casts shadow rays into the Embree scene
-    FragmentShading fragment_shading = FragmentShading::Centroid;
+    FragmentShading fragment_shading = FragmentShading::Integral;
     const std::vector<char>* leave_out = nullptr;  // per object: not in the Embree scene (a still backdrop)
 };
 

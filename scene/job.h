@@ -14,9 +14,11 @@ enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
 enum class PathMethod { Exact, Euler, RK4 };
 enum class TimeIntegration { Subframes, Sweep };
 // How a clipped fragment piece gets its one colour: shaded at its area centroid with an image texture
-// filtered over the whole piece, or cut into a fan of triangles about the centroid, each shaded that
-// way, their colours averaged by area (as many shading points as the piece has vertices).
-enum class FragmentShading { Centroid, Fan };
+// filtered over the whole piece (Centroid), or cut into a fan of triangles about the centroid, each shaded
+// that way, their colours averaged by area (Fan: as many shading points as the piece has vertices), or
+// shaded at its centroid with an image texture's bilinear image integrated exactly over the piece's
+// preimage in (s, t) (Integral).
+enum class FragmentShading { Centroid, Fan, Integral };
 
 // The name a job file uses for the method.
 const char* methodName(Method method);
@@ -57,7 +59,7 @@ struct RenderSettings {
     // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel.
     TimeIntegration time_integration = TimeIntegration::Subframes;
     double sweep_spacing = 1.0;
-    FragmentShading fragment_shading = FragmentShading::Centroid;
+    FragmentShading fragment_shading = FragmentShading::Integral;
     int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)
     bool shadows = false;
     std::uint64_t seed = 0;

@@ -361,7 +361,7 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
     r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
     if (const ConfigNode* f = map.optional("fragment_shading"))
         r.fragment_shading =
-            static_cast<FragmentShading>(asChoice(*f, "render.fragment_shading", {"centroid", "fan"}));
+            static_cast<FragmentShading>(asChoice(*f, "render.fragment_shading", {"centroid", "fan", "integral"}));
     r.visibility_rays = map.integer("visibility_rays", r.visibility_rays, 0, kMaxVisibilityRays);
     r.shadows = map.boolean("shadows", r.shadows);
     if (const ConfigNode* s = map.optional("seed")) r.seed = asUnsigned(*s, "render.seed");

@@ -180,6 +180,7 @@ public:
 
     const Image* find(const std::string& file) const override;
     glm::dvec3 lookup(const Image& image, const glm::dvec2& st, const TextureFootprint& footprint) const override;
+    Texels texels(const Image& image) const override;
     void removePreparedFiles() {
         std::error_code ignored;
         std::filesystem::remove_all(folder_, ignored);
@@ -245,6 +246,22 @@ glm::dvec3 OiioTextures::lookup(const Image& image, const glm::dvec2& st, const 
                      static_cast<float>(st.y), static_cast<float>(f.dx.x), static_cast<float>(f.dx.y),
                      static_cast<float>(f.dy.x), static_cast<float>(f.dy.y), 3, rgb);
     return glm::dvec3(rgb[0], rgb[1], rgb[2]);
+}
+
+ImageTextures::Texels OiioTextures::texels(const Image& image) const {
+    Texels out;
+    OIIO::TextureSystem::Perthread* thread = system_->get_perthread_info();
+    const OIIO::ImageSpec* spec = system_->imagespec(image.handle, thread);
+    if (!spec || spec->width <= 0 || spec->height <= 0) return out;
+    out.width = spec->width;
+    out.height = spec->height;
+    out.rgb.resize(3 * static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
+    OIIO::TextureOpt options;
+    // The prepared copy is linear RGB (linearRgb), stored as float: these are the lookups' own texels.
+    if (!system_->get_texels(image.handle, thread, options, 0, spec->x, spec->x + out.width, spec->y,
+                             spec->y + out.height, 0, 1, 0, 3, OIIO::TypeDesc::FLOAT, out.rgb.data()))
+        return {};
+    return out;
 }
 
 ImageTextures& textures() {

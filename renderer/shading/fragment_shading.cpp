@@ -127,6 +127,37 @@ struct UvFunctions {
         }
         return out;
     }
+
+    // The piece's preimage in (s, t): its vertices carried exactly (the map is projective, so the preimage
+    // of a convex polygon is the convex polygon of the carried vertices), weighted by the raster area per
+    // unit (s, t), proportional to w^3 (w = 1/z, z affine in (s, t)), linearised about raster point
+    // `about` (the piece's centroid): 1 + slope . (st - st(about)) with slope = -3 grad_st(z) / z. The
+    // weight is dropped (uniform) where it would not stay positive over the piece: z changes by more than
+    // a third across it, an edge-on sliver.
+    void preimage(const ConvexPolygon& piece, const glm::dvec2& origin, const glm::dvec2& about,
+                  const Affine& inv_depth, TexturePiece& out) const {
+        out.st.clear();
+        for (int k = 0; k < piece.n; ++k) {
+            const glm::dvec2 d = piece.v[k] - origin;
+            const double w = inv_depth(d);
+            out.st.push({uv_over_z[0](d) / w, uv_over_z[1](d) / w});
+        }
+        out.st.close();
+        const glm::dvec2 d = about - origin;
+        const double w = inv_depth(d);
+        const glm::dvec2 st(uv_over_z[0](d) / w, uv_over_z[1](d) / w);
+        // J = d(s, t)/d(x, y) and grad_x z = -grad_x w / w^2; grad_st z = J^-T grad_x z.
+        const double a = (uv_over_z[0].a - st.x * inv_depth.a) / w, b = (uv_over_z[0].b - st.x * inv_depth.b) / w;
+        const double c = (uv_over_z[1].a - st.y * inv_depth.a) / w, e = (uv_over_z[1].b - st.y * inv_depth.b) / w;
+        const double det = a * e - b * c;
+        const glm::dvec2 gx(-inv_depth.a / (w * w), -inv_depth.b / (w * w));
+        const glm::dvec2 grad_z((e * gx.x - c * gx.y) / det, (a * gx.y - b * gx.x) / det);
+        out.weight = {st, -3.0 * w * grad_z};
+        bool positive = std::isfinite(out.weight.slope.x) && std::isfinite(out.weight.slope.y);
+        for (int k = 0; k < out.st.n && positive; ++k)
+            positive = 1.0 + glm::dot(out.weight.slope, out.st.v[k] - st) > 0.0;
+        if (!positive) out.weight = {};
+    }
 };
 
 struct ShadingCall {
@@ -137,9 +168,11 @@ struct ShadingCall {
     const glm::dvec3& eye;
     const TriangleFunctions& f;
     const UvFunctions& uv;
+    bool integral;  // the `integral` rule: image textures averaged exactly over the piece's preimage
 };
 
-// One colour for a piece: the surface at its area centroid, the texture filtered over its bounding box.
+// One colour for a piece: the surface at its area centroid, the texture filtered over its bounding box
+// or, under the `integral` rule, averaged over its preimage in (s, t).
 glm::dvec3 shadeAt(const ConvexPolygon& piece, const ShadingCall& c) {
     const glm::dvec2 at = centroid(piece);
     const glm::dvec3 b = c.f.bary(at, c.screen);
@@ -149,6 +182,11 @@ glm::dvec3 shadeAt(const ConvexPolygon& piece, const ShadingCall& c) {
     SurfaceGeometry surface = c.shader.geometry(point);
     const RasterBounds box = piece.bounds();
     surface.footprint = c.uv.footprint(at - c.f.origin, box.hi - box.lo, c.f.inv_depth);
+    TexturePiece st;
+    if (c.integral) {
+        c.uv.preimage(piece, c.f.origin, at, c.f.inv_depth, st);
+        surface.texture_piece = &st;
+    }
     return c.shader.shade(point, surface, c.eye);
 }
 
@@ -233,7 +271,8 @@ void shadeFragment(const ConvexPolygon& polygon, const FragmentSurface& on, cons
         ShadedPiece piece;
         piece.polygon = cell;
         piece.area = area;
-        const ShadingCall call{screen, source, shader, time, eye, f, uv};
+        const ShadingCall call{screen, source, shader, time, eye, f, uv,
+                               shader.fragmentShading() == FragmentShading::Integral};
         piece.colour = fan ? shadeFan(cell, call) : shadeAt(cell, call);
         out.push_back(piece);
     }

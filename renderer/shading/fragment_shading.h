@@ -24,9 +24,11 @@ inline constexpr int kMaxTextureCuts = 8;
 
 // Cuts a visible fragment polygon of `screen` along its material's checker or stripe cell boundaries
 // (planes in object space, hence lines in raster space: (X - k s)/z is affine in raster), so that every
-// piece has one albedo, then gives each piece the colour the shader's FragmentShading rule says: by
-// default the surface at its area centroid, an image texture filtered over the piece's footprint (its
-// bounding box carried into (s, t) by the perspective-correct Jacobian at the centroid). Lambert lighting
+// piece has one albedo, then gives each piece the colour the shader's FragmentShading rule says: the
+// surface at its area centroid, an image texture either averaged exactly over the piece's preimage in
+// (s, t) (integral, the default: renderer/shading/texture_integral.h) or filtered over the piece's
+// footprint (centroid: its bounding box carried into (s, t) by the perspective-correct Jacobian at the
+// centroid), or a fan of triangles about the centroid shaded the centroid way (fan). Lambert lighting
 // varies smoothly over a fragment, so the centroid value is second-order accurate in the fragment size; a
 // directional light on a flat, faceted triangle is exact.
 // The triangle a fragment lies on: in raster space and on its mesh.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -36,6 +37,15 @@ public:
     // Linear RGB of a prepared image at (s, t) (t down from the top row, both repeating), filtered over
     // `footprint`. Thread-safe.
     virtual glm::dvec3 lookup(const Image& image, const glm::dvec2& st, const TextureFootprint& footprint) const = 0;
+
+    // A prepared image's finest level, the texels point lookups interpolate: linear RGB floats, row 0 the
+    // top (t = 0), texel (i, j) at rgb[3 (j width + i) + k]. Thread-safe.
+    struct Texels {
+        int width = 0;
+        int height = 0;
+        std::vector<float> rgb;
+    };
+    virtual Texels texels(const Image& image) const = 0;
 
 protected:
     // prepare's work: empty when `file` is (now) prepared, else why it cannot be, naming the file.

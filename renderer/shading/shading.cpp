@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "renderer/shading/texture_integral.h"
 #include "renderer/visibility/embree_scene.h"
 #include "scene/object_motion.h"
 
@@ -58,7 +59,8 @@ glm::dvec3 lightIrradiance(const Light& light, const glm::dvec3& position, const
 Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows, FragmentShading fragments)
     : scene_(motion.scene()), motion_(motion), shadows_(shadows), fragments_(fragments),
       static_world_(scene_.objects.size()), images_(scene_.materials.size(), nullptr),
-      emission_images_(scene_.materials.size(), nullptr) {
+      emission_images_(scene_.materials.size(), nullptr), pyramids_(scene_.materials.size(), nullptr),
+      emission_pyramids_(scene_.materials.size(), nullptr) {
     if (usesImageTextures(scene_)) {
         ImageTextures& textures = ImageTextures::shared();
         const auto prepared = [&](const ImageTexture& image) -> const ImageTextures::Image* {
@@ -66,9 +68,16 @@ Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows, FragmentSh
             textures.prepare(image.file, FileLoc{});
             return textures.find(image.file);
         };
+        const auto pyramid = [&](const ImageTextures::Image* image) -> const TexelPyramid* {
+            if (!image || fragments_ != FragmentShading::Integral) return nullptr;
+            const TexelPyramid& p = TexelPyramid::of(*image);
+            return p.levels() > 0 ? &p : nullptr;
+        };
         for (std::size_t m = 0; m < scene_.materials.size(); ++m) {
             images_[m] = prepared(scene_.materials[m].image);
             emission_images_[m] = prepared(scene_.materials[m].emission_image);
+            pyramids_[m] = pyramid(images_[m]);
+            emission_pyramids_[m] = pyramid(emission_images_[m]);
         }
     }
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
@@ -178,13 +187,20 @@ glm::dvec3 Shader::shade(const SurfacePoint& point, const SurfaceGeometry& surfa
     }
     const ImageTextures::Image* image = images_[m];
     glm::dvec3 colour = albedo(material, surface.object_position);
-    if (image) colour = colour * ImageTextures::shared().lookup(*image, surface.uv, surface.footprint);
+    if (image) colour = colour * imageValue(*image, pyramids_[m], surface);
     if (material.model == ShadingModel::Unlit) return colour;
     colour = colour * lightArriving(point, surface, facing, shadow_rays);
     const ImageTextures::Image* emission_image = emission_images_[m];
     if (emission_image)
-        return colour + material.emission * ImageTextures::shared().lookup(*emission_image, surface.uv, surface.footprint);
+        return colour + material.emission * imageValue(*emission_image, emission_pyramids_[m], surface);
     return colour + material.emission;
+}
+
+glm::dvec3 Shader::imageValue(const ImageTextures::Image& image, const TexelPyramid* pyramid,
+                              const SurfaceGeometry& surface) const {
+    if (pyramid && surface.texture_piece)
+        return textureMean(*pyramid, surface.texture_piece->st, surface.texture_piece->weight);
+    return ImageTextures::shared().lookup(image, surface.uv, surface.footprint);
 }
 
 glm::dvec3 Shader::lightArriving(const SurfacePoint& point, const SurfaceGeometry& surface, const FacingNormals& facing,

@@ -7,6 +7,7 @@
 
 #include "renderer/frame_motion.h"
 #include "renderer/shading/image_textures.h"
+#include "renderer/shading/texture_integral.h"
 #include "scene/job.h"
 #include "scene/scene.h"
 
@@ -33,6 +34,9 @@ struct SurfaceGeometry {
     glm::dvec3 shading_normal{0.0};
     glm::dvec2 uv{0.0};               // meshes with UVs: image-texture (s, t)
     TextureFootprint footprint;       // the (s, t) extent the colour stands for; zero: a point
+    // The `integral` rule: the (s, t) polygon the colour stands for; image textures are averaged over it
+    // exactly (renderer/shading/texture_integral.h) instead of looked up at uv over the footprint.
+    const TexturePiece* texture_piece = nullptr;
 };
 
 
@@ -83,6 +87,10 @@ private:
     // Ambient plus every light that reaches the point (shadow rays when the shader has a scene for them).
     glm::dvec3 lightArriving(const SurfacePoint& point, const SurfaceGeometry& surface, const FacingNormals& facing,
                              long long* shadow_rays) const;
+    // An image texture's value for `surface`: its exact mean over surface.texture_piece when there is one
+    // and the image's pyramid (null outside the `integral` rule), else the texture system's lookup.
+    glm::dvec3 imageValue(const ImageTextures::Image& image, const TexelPyramid* pyramid,
+                          const SurfaceGeometry& surface) const;
 
     const Scene& scene_;
     const FrameMotion& motion_;
@@ -91,6 +99,9 @@ private:
     std::vector<std::vector<glm::dvec3>> static_world_;  // per object; empty when the object moves
     std::vector<const ImageTextures::Image*> images_;    // per material; null without an image texture
     std::vector<const ImageTextures::Image*> emission_images_;  // per material; null without one
+    // Per material, the `integral` rule only: the images' pyramids (null otherwise).
+    std::vector<const TexelPyramid*> pyramids_;
+    std::vector<const TexelPyramid*> emission_pyramids_;
 };
 
 // Base colour or texture at an object-space point (no lighting); image textures are not included.

@@ -16,7 +16,7 @@ namespace clipblur {
 
 namespace {
 
-// Every method and both fragment_shading rules of both clipped time integrations: each must shade
+// Every method and every fragment_shading rule of both clipped time integrations: each must shade
 // emission and unlit materials the same way.
 struct MethodCase {
     const char* name;
@@ -30,6 +30,8 @@ const MethodCase kMethods[] = {
     {"clipped subframes fan", Method::Clipped, TimeIntegration::Subframes, FragmentShading::Fan},
     {"clipped sweep centroid", Method::Clipped, TimeIntegration::Sweep, FragmentShading::Centroid},
     {"clipped sweep fan", Method::Clipped, TimeIntegration::Sweep, FragmentShading::Fan},
+    {"clipped subframes integral", Method::Clipped, TimeIntegration::Subframes, FragmentShading::Integral},
+    {"clipped sweep integral", Method::Clipped, TimeIntegration::Sweep, FragmentShading::Integral},
     {"accumulation", Method::Accumulation, TimeIntegration::Subframes, FragmentShading::Centroid},
     {"frame0_only", Method::Frame0Only, TimeIntegration::Subframes, FragmentShading::Centroid},
     {"stochastic", Method::Stochastic, TimeIntegration::Subframes, FragmentShading::Centroid},
@@ -319,7 +321,8 @@ TEST(Emission, CryptomatteAndAovsDoNotDependOnTheShadingModel) {
 }
 
 // An emission image multiplies the emission, and an unlit material's image its base colour, through the
-// same filtered lookups as a lit base colour image: the textured quad of
+// same path as a lit base colour image (filtered lookups under centroid, exact means under integral): the
+// textured quad of
 // ImageTextures.TexturedQuadClippedMatchesStochastic (an affine 8 x 8 float ramp filling the film), emissive
 // with no light or unlit under a light, gives the ramp at a pixel's centre, and clipped matches stochastic
 // within 1e-4 over pixels 10..21 (that test's argument: float texels, an affine image, symmetric filters).
@@ -344,24 +347,27 @@ TEST(Emission, EmissionAndUnlitImagesAreFilteredLikeBaseColourImages) {
     unlit.image.file = file.string();
     unlit.model = ShadingModel::Unlit;
     for (const Material& material : {glow, unlit}) {
-        RenderJob job = test::squareFilmJob(film);
-        job.scene.ambient = glm::dvec3(material.model == ShadingModel::Unlit ? 0.7 : 0.0);
-        job.scene.lights = {directionalLight()};
-        job.scene.materials = {material};
-        job.scene.objects = {quad};
-        job.render.samples = 256;
-        RenderJob stochastic_job = job;
-        job.render.method = Method::Clipped;
-        const RenderResult clipped = renderFrame(job, 0);
-        const RenderResult stochastic = renderFrame(stochastic_job, 0);
-        double worst = 0.0;
-        for (const char* c : {"R", "G", "B"})
-            for (int py = 10; py < 22; ++py)
-                for (int px = 10; px < 22; ++px) worst = std::max(worst, double(std::abs(value(clipped, c, px, py) - value(stochastic, c, px, py))));
-        EXPECT_LT(worst, 1e-4);
-        // Pixel (10, 10)'s centre: s = t = 10.5 / 32, texel coordinate 2.125; red is 0.1 + 0.03 i + 0.06 j.
-        const double texel = 10.5 / film * texels - 0.5;
-        EXPECT_NEAR(value(clipped, "R", 10, 10), 2.0 * (0.1 + 0.03 * texel + 0.06 * texel), 2e-5);
+        for (const FragmentShading rule : {FragmentShading::Centroid, FragmentShading::Integral}) {
+            RenderJob job = test::squareFilmJob(film);
+            job.render.fragment_shading = rule;
+            job.scene.ambient = glm::dvec3(material.model == ShadingModel::Unlit ? 0.7 : 0.0);
+            job.scene.lights = {directionalLight()};
+            job.scene.materials = {material};
+            job.scene.objects = {quad};
+            job.render.samples = 256;
+            RenderJob stochastic_job = job;
+            job.render.method = Method::Clipped;
+            const RenderResult clipped = renderFrame(job, 0);
+            const RenderResult stochastic = renderFrame(stochastic_job, 0);
+            double worst = 0.0;
+            for (const char* c : {"R", "G", "B"})
+                for (int py = 10; py < 22; ++py)
+                    for (int px = 10; px < 22; ++px) worst = std::max(worst, double(std::abs(value(clipped, c, px, py) - value(stochastic, c, px, py))));
+            EXPECT_LT(worst, 1e-4);
+            // Pixel (10, 10)'s centre: s = t = 10.5 / 32, texel coordinate 2.125; red is 0.1 + 0.03 i + 0.06 j.
+            const double texel = 10.5 / film * texels - 0.5;
+            EXPECT_NEAR(value(clipped, "R", 10, 10), 2.0 * (0.1 + 0.03 * texel + 0.06 * texel), 2e-5);
+        }
     }
 }
 

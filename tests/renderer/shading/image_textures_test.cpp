@@ -53,6 +53,13 @@ TEST(ImageTextures, LookupsOfAGeneratedImageAtKnownUvs) {
         }
     const glm::dvec3 between = textures.lookup(*image, {2.0 / w, 0.5 / h}, {});
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(between[k], 0.5 * (texel(1, 0, k) + texel(2, 0, k)), 1e-5);
+    // The module's texels, which the integral rule integrates, are these decoded texels, row 0 the top.
+    const ImageTextures::Texels texels = textures.texels(*image);
+    ASSERT_EQ(texels.width, w);
+    ASSERT_EQ(texels.height, h);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i)
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(texels.rgb[static_cast<std::size_t>(3 * (j * w + i) + k)], texel(i, j, k), 1e-6);
     // The image repeats: s = 1 + (0.5 / w) is texel 0 again.
     EXPECT_NEAR(textures.lookup(*image, {1.0 + 0.5 / w, 0.5 / h}, {}).x, texel(0, 0, 0), 1e-5);
     // A footprint of the whole image reads its coarsest level, the box average of linear texels (the
@@ -89,7 +96,8 @@ TEST(ImageTextures, MissingOrUnreadableFilesAreSceneErrorsNamingThem) {
 // A quad filling a 32 x 32 film textured with an 8 x 8 float image whose texels are affine in (i, j):
 // its bilinear image is then affine in raster space except within a texel of the wrap (texel centres at
 // raster 2 and 30), so over pixels 10..21 any filter symmetric about a pixel's centre, up to 2 texels
-// wide, gives the exact pixel average. The clipped render (one filtered lookup per fragment) must match
+// wide, gives the exact pixel average, and so does the integral rule. The clipped render (centroid: one
+// filtered lookup per fragment; integral: the exact mean over each piece) must match
 // the stochastic one (point lookups, 256 per pixel) there to 1e-4: float texels and float (s, t) round
 // at 1e-7, the jittered mean of an affine function is exact to its float sum, and a lookup shifted by
 // 0.01 texel or read upside down misses by 6e-4 or more (the image changes by 0.06 per texel in t).
@@ -109,29 +117,32 @@ TEST(ImageTextures, TexturedQuadClippedMatchesStochastic) {
     for (const auto& t : quad.mesh.triangles)
         for (const std::uint32_t v : t) quad.mesh.corner_uvs.push_back(st[v]);
     job.scene.objects.push_back(quad);
-    const auto render = [&](Method method) {
+    const auto render = [&](Method method, FragmentShading rule) {
         RenderJob j = job;
         j.render.method = method;
         j.render.samples = 256;
+        j.render.fragment_shading = rule;
         return renderFrame(j, 0);
     };
-    const RenderResult clipped = render(Method::Clipped);
-    const RenderResult stochastic = render(Method::Stochastic);
-    double worst = 0.0;
-    for (const char* c : {"R", "G", "B"}) {
-        const auto& x = clipped.image.find(c)->values;
-        const auto& s = stochastic.image.find(c)->values;
-        for (int py = 10; py < 22; ++py)
-            for (int px = 10; px < 22; ++px) {
-                const std::size_t i = static_cast<std::size_t>(py * film + px);
-                worst = std::max(worst, std::abs(double(x[i]) - s[i]));
-            }
+    const RenderResult stochastic = render(Method::Stochastic, FragmentShading::Centroid);
+    for (const FragmentShading rule : {FragmentShading::Centroid, FragmentShading::Integral}) {
+        const RenderResult clipped = render(Method::Clipped, rule);
+        double worst = 0.0;
+        for (const char* c : {"R", "G", "B"}) {
+            const auto& x = clipped.image.find(c)->values;
+            const auto& s = stochastic.image.find(c)->values;
+            for (int py = 10; py < 22; ++py)
+                for (int px = 10; px < 22; ++px) {
+                    const std::size_t i = static_cast<std::size_t>(py * film + px);
+                    worst = std::max(worst, std::abs(double(x[i]) - s[i]));
+                }
+        }
+        RecordProperty("worst", std::to_string(worst));
+        EXPECT_LT(worst, 1e-4);
+        // The image at pixel (10, 10)'s centre, from the texels: s = t = 10.5 / 32, texel coordinate 2.125.
+        const double texel = 10.5 / film * texels - 0.5;
+        EXPECT_NEAR(clipped.image.find("R")->values[10 * film + 10], 0.1 + 0.03 * texel + 0.06 * texel, 1e-5);
     }
-    RecordProperty("worst", std::to_string(worst));
-    EXPECT_LT(worst, 1e-4);
-    // The image at pixel (10, 10)'s centre, from the texels: s = t = 10.5 / 32, texel coordinate 2.125.
-    const double texel = 10.5 / film * texels - 0.5;
-    EXPECT_NEAR(clipped.image.find("R")->values[10 * film + 10], 0.1 + 0.03 * texel + 0.06 * texel, 1e-5);
 }
 
 }  // namespace clipblur
