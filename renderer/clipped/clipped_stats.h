@@ -22,6 +22,8 @@ struct ClippedStats {
     long long measured_fragment_paths = 0, near_crossing_fragments = 0;
     long long sweep_spilled_pixels = 0, sweep_backdrop_tiles = 0;  // sweep: see SegmentTotals, MotionPlan
     bool backdrop_behind_everything = false;
+    // The image's RMS time-sampling error over R, G, B as the render estimates it (time_error.h).
+    double estimated_error = 0.0;
     ReclipStats reclip;
     FrameFragmentStats open, close;
     std::optional<FrameFragmentStats> mid, backdrop;  // the mid-shutter depth set, the still backdrop
@@ -49,6 +51,7 @@ struct ClippedStats {
         f.count("capped_tiles", capped_tiles);
         f.count("measured_fragment_paths", measured_fragment_paths);
         f.count("near_crossing_fragments", near_crossing_fragments);
+        f.value("estimated_error", estimated_error);
         f.count("propagated_triangles", reclip.propagated);
         f.count("reclip_near_clipped", reclip.near_clipped);
         f.count("reclip_fragments", reclip.fragments);
