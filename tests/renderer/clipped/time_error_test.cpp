@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "renderer/clipped/error_target.h"
 #include "renderer/clipped/time_error.h"
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
@@ -99,6 +100,30 @@ TEST(TimeError, NestedRuleIsACompositeMidpointRule) {
     const std::vector<double> expected{-1, 2, -1, -1, 2, -1, 0};
     EXPECT_EQ(seven.to3, expected);
     EXPECT_EQ(NestedRule(2).to3, (std::vector<double>{0, 0}));
+}
+
+// The spacing model: p = 2 below the pilot's spacing (4x less error, half the spacing), p = 1 above it.
+TEST(ErrorTarget, SpacingFollowsOrderTwoBelowAndOneAbove) {
+    EXPECT_DOUBLE_EQ(spacingForTarget(1.0, 4e-3, 1e-3), 0.5);
+    EXPECT_DOUBLE_EQ(spacingForTarget(1.0, 4e-3, 8e-3), 2.0);
+    EXPECT_DOUBLE_EQ(spacingForTarget(1.0, 0.0, 1e-3), 1.0) << "no estimate: the pilot's setting stays";
+}
+
+// render.error_target on the translating quad, sweep and point subframes: the exact error of what it
+// renders within the estimate's own spread on this phase-coherent scene (TimeError above: 4x either way
+// per setting) of the target. Measured: 0.27 .. 1.84 (docs/performance.md has the bench scenes).
+TEST(ErrorTarget, TranslatingQuadMeetsTheTargetWithinTheEstimatesSpread) {
+    for (const double target : {1e-3, 3e-4, 1e-4}) {
+        for (const bool sweep : {true, false}) {
+            RenderJob job = squareFilmJob();
+            job.render.max_subframes = 1024;
+            job.render.error_target = target;
+            if (sweep) job.render.time_integration = TimeIntegration::Sweep;
+            const Measured m = measure(job);
+            EXPECT_GT(m.true_error, 0.25 * target) << target << (sweep ? " sweep" : " subframes");
+            EXPECT_LT(m.true_error, 4.0 * target) << target << (sweep ? " sweep" : " subframes");
+        }
+    }
 }
 
 }  // namespace clipblur
