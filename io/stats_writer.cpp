@@ -25,6 +25,7 @@ struct JsonFields {
 
     void count(const char* name, long long value) { json["counts"][prefix + name] = value; }
     void seconds(const char* name, double value) { json["seconds"][prefix + name] = value; }
+    void value(const char* name, double value) { json["values"][prefix + name] = value; }
     void info(const char* name, const std::string& text) { json["info"][prefix + name] = text; }
     template <class Stats>
     void nest(const char* inner, const Stats& stats) {
@@ -45,6 +46,7 @@ nlohmann::json statsToJson(const RenderStats& stats, const StatsContext& context
     j["peak_memory_bytes"] = peakMemoryBytes();
     j["seconds"] = nlohmann::json::object();
     j["counts"] = nlohmann::json::object();
+    j["values"] = nlohmann::json::object();
     j["info"] = nlohmann::json::object();
     JsonFields fields{j, ""};
     stats.fields(fields);

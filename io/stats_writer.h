@@ -24,9 +24,9 @@ struct StatsContext {
 };
 
 // The stats of one frame as JSON: {"frame", "image", "threads", "config_hash", "start_time",
-// "peak_memory_bytes", "seconds": {stage: s}, "counts": {...}, "info": {...}} and, against a reference,
-// "error": {"rmse", "max_abs", "mean_abs"}; the keys of "seconds", "counts" and "info" are the names the
-// stats structs give their fields (RenderStats::fields).
+// "peak_memory_bytes", "seconds": {stage: s}, "counts": {...}, "values": {...}, "info": {...}} and, against a
+// reference, "error": {"rmse", "max_abs", "mean_abs"}; the keys of "seconds", "counts", "values" and "info"
+// are the names the stats structs give their fields (RenderStats::fields).
 nlohmann::json statsToJson(const RenderStats& stats, const StatsContext& context);
 
 // `time` as UTC ISO 8601 to the second, e.g. 2026-11-25T01:17:28Z.

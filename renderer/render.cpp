@@ -3,6 +3,7 @@
 #include <string>
 
 #include "renderer/clipped/clipped_renderer.h"
+#include "renderer/clipped/error_target.h"
 #include "renderer/stochastic/stochastic_renderer.h"
 #include "renderer/stopwatch.h"
 #include "renderer/worker_threads.h"
@@ -28,6 +29,8 @@ RenderResult renderWithMethod(const RenderJob& job, int frame, const RenderCallb
         case Method::Stochastic:
             return renderStochastic(job, frame, callbacks);
         case Method::Clipped:
+            if (job.render.error_target > 0.0) return renderToErrorTarget(job, frame, callbacks);
+            return renderClipped(job, frame, callbacks);
         case Method::Frame0Only:
             return renderClipped(job, frame, callbacks);
         case Method::Accumulation:

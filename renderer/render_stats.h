@@ -16,7 +16,8 @@ namespace clipblur {
 // Each stage's stats struct is declared beside the code that counts (CandidateStats, FrameFragmentStats,
 // ReclipStats, ClippedStats, ...) and lists its fields once, in
 //     template <class Fields> void fields(Fields& f) const;
-// calling f.count(name, value), f.seconds(name, value) and f.info(name, text) per field and
+// calling f.count(name, value), f.seconds(name, value), f.value(name, value) (a measured real number)
+// and f.info(name, text) per field and
 // f.nest(prefix, member) per nested struct, whose names then get the prefix. The names are the stats
 // JSON's keys; one writer (statsToJson) walks them.
 struct RenderStats {

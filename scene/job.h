@@ -59,6 +59,10 @@ struct RenderSettings {
     // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel.
     TimeIntegration time_integration = TimeIntegration::Subframes;
     double sweep_spacing = 1.0;
+    // Clipped: the RMS time-sampling error (R, G, B, white = 1) to aim for; 0: off. A pilot render
+    // measures estimated_error and the spacing (sweep) or subframe count (subframes) is chosen from it
+    // (renderer/clipped/error_target.h).
+    double error_target = 0.0;
     FragmentShading fragment_shading = FragmentShading::Integral;
     int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)
     bool shadows = false;

@@ -358,7 +358,16 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
     if (const ConfigNode* t = map.optional("time_integration"))
         r.time_integration =
             static_cast<TimeIntegration>(asChoice(*t, "render.time_integration", {"subframes", "sweep"}));
+    const bool spacing_given = map.has("sweep_spacing");
     r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
+    if (const ConfigNode* e = map.optional("error_target")) {
+        r.error_target = asNumber(*e, "render.error_target", 1e-5, 0.5);
+        // The target picks what it needs: the spacing with sweep, the subframe count without.
+        if (r.time_integration == TimeIntegration::Sweep && spacing_given)
+            throwConfigError(e->loc, "'render.error_target' picks sweep_spacing: leave 'render.sweep_spacing' out");
+        if (r.time_integration == TimeIntegration::Subframes && r.subframes > 0)
+            throwConfigError(e->loc, "'render.error_target' picks the subframe count: leave 'render.subframes' at auto");
+    }
     if (const ConfigNode* f = map.optional("fragment_shading"))
         r.fragment_shading =
             static_cast<FragmentShading>(asChoice(*f, "render.fragment_shading", {"centroid", "fan", "integral"}));

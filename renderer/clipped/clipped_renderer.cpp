@@ -21,6 +21,7 @@
 #include "renderer/clipped/shutter_segments.h"
 #include "renderer/clipped/still_backdrop.h"
 #include "renderer/clipped/subframe_reclip.h"
+#include "renderer/clipped/time_error.h"
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
 #include "renderer/visibility/embree_scene.h"
@@ -117,6 +118,7 @@ struct Spill {
     double covered = 0.0, depth = 0.0;
     glm::dvec2 motion{0.0};
     ObjectShares objects;  // ID mattes only
+    LevelDifference level{0.0f};  // the time-sampling error estimate's (time_error.h)
 };
 
 // Per-pixel sums over the render window (window-local, row-major).
@@ -126,9 +128,11 @@ struct WindowSums {
     std::vector<double> depth;
     std::vector<glm::dvec2> motion;
     std::vector<ObjectShares> objects;  // per object its share of `covered`; empty unless ID mattes are asked for
+    std::vector<LevelDifference> levels;  // per pixel, for estimateTimeError
 
     WindowSums(std::size_t pixels, bool with_objects)
-        : colour(pixels), covered(pixels), depth(pixels), motion(pixels), objects(with_objects ? pixels : 0) {}
+        : colour(pixels), covered(pixels), depth(pixels), motion(pixels), objects(with_objects ? pixels : 0),
+          levels(pixels, LevelDifference(0.0f)) {}
 
     // Adds scale x one pixel's sums to pixel i, with its per-object areas when they are tracked.
     void add(std::size_t i, double scale, const Spill& s) {
@@ -137,6 +141,7 @@ struct WindowSums {
         depth[i] += scale * s.depth;
         motion[i] += scale * s.motion;
         if (!objects.empty()) addShares(objects[i], s.objects, scale);
+        levels[i] += static_cast<float>(scale) * s.level;
     }
     // Adds scale x pixel p of a still image (no motion) to pixel i.
     void addStill(std::size_t i, double scale, const PixelSums& still, std::size_t p) {
@@ -153,6 +158,7 @@ struct WindowSums {
         depth[i] += other.depth[i];
         motion[i] += other.motion[i];
         if (!objects.empty() && !other.objects.empty()) addShares(objects[i], other.objects[i], 1.0);
+        levels[i] += other.levels[i];
     }
 };
 
@@ -177,6 +183,12 @@ struct FrontOverBackdrop {
     const MotionPlan& plan;
     double weight = 1.0;  // the segment's
 };
+// What the backdrop adds to a pixel's level differences: it shows through as much as the front leaves
+// uncovered, so a covered-area difference d shows as -d x the backdrop's colour and covered area.
+LevelDifference behindFront(const LevelDifference& front, const PixelSums& backdrop, std::size_t p) {
+    return -front.w * LevelDifference(glm::vec3(backdrop.colour[p]), static_cast<float>(backdrop.covered[p]));
+}
+
 void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layers, WindowSums& sums) {
     const TileGrid& grid = ctx.frame.grid;
     const PixelBounds& window = ctx.window;
@@ -193,6 +205,7 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
             const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
             const std::size_t p = film.index(x, y);
             sums.addStill(i, seen, backdrop, p);
+            if (seen > 0.0 && seen < weight) sums.levels[i] += behindFront(front.levels[i], backdrop, p);
         }
     }
 }
@@ -369,10 +382,13 @@ struct TileOutputs {
     tbb::enumerable_thread_specific<ReclipScratch>& scratches;
 };
 
-// A tile's subframe sums and the factor each counts with (the shutter curve; exactly 1 for a box).
+// A tile's subframe sums and the factor each counts with (the shutter curve; exactly 1 for a box). For
+// the error estimate: point subframes are the samples of a nested rule over the segment (`rule`); with
+// sweep each subframe's TileSums carries its interval's.
 struct WeightedSubframes {
     const std::vector<TileSums>& sums;
     std::span<const double> factors;
+    const NestedRule* rule = nullptr;
 };
 
 // One pixel's sums over a tile's subframes, in subframe order: bit-identical for any thread count.
@@ -388,6 +404,10 @@ Spill subframeTotal(const WeightedSubframes& subframes, int x, int y) {
         sum.depth += f * s.depth[i];
         sum.motion += f * s.motion[i];
         if (s.track_objects) addShares(sum.objects, s.objects[i], f);
+        if (s.track_error)
+            sum.level += LevelDifference(f * s.d3[i]);
+        else if (subframes.rule)
+            sum.level += LevelDifference(subframes.rule->to3[k] * f * glm::dvec4(s.colour[i], s.covered[i]));
     }
     return sum;
 }
@@ -428,6 +448,7 @@ void collectSpills(const WeightedSubframes& subframes, const PixelBounds& tile, 
             sum.depth *= w;
             sum.motion *= w;
             for (ObjectShare& o : sum.objects) o.coverage *= w;
+            sum.level *= static_cast<float>(w);
             spilled.push_back(std::move(sum));
         }
     }
@@ -461,7 +482,10 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     const PixelBounds reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
     if (!window.overlaps(reach)) return -1;
     std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
-    for (TileSums& s : tile_sums) s.track_objects = track_objects;
+    for (TileSums& s : tile_sums) {
+        s.track_objects = track_objects;
+        s.track_error = sweeping;
+    }
     std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
     const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
     const double half = 0.5 * (te - ts) / std::max(n, 1);
@@ -488,6 +512,8 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
                        tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
     });
     const double w = seg.weight / std::max(n, 1);
+    const NestedRule rule(sweeping ? 1 : n);
+    const WeightedSubframes weighted{tile_sums, factors, sweeping ? nullptr : &rule};
     const PixelBounds mine = tile.intersect(window);
     for (int y = mine.y0; y < mine.y1; ++y) {
         for (int x = mine.x0; x < mine.x1; ++x) {
@@ -497,12 +523,12 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
                 out.sums.addStill(pixel_out, seg.weight, ends.still, pixel);
                 continue;
             }
-            const Spill sum = subframeTotal({tile_sums, factors}, x, y);
+            const Spill sum = subframeTotal(weighted, x, y);
             out.sums.add(pixel_out, w, sum);
         }
     }
     if (sweeping && n > 0)
-        collectSpills({tile_sums, factors}, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
+        collectSpills(weighted, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
     for (const ReclipStats& s : sub_stats) stats.merge(s);
     return n;
 }
@@ -685,6 +711,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const std::vector<ShutterSegment> segments = shutterSegmentsOf(ctx, stats, result.stats.warnings);
     WindowSums sums(ctx.window.area(), job.output.cryptomatte.enabled);
     renderSegments(ctx, segments, sums, totals);
+    stats.estimated_error = estimateTimeError(sums.levels);
     FrameFragmentStats mid_stats;
     std::optional<EmbreeScene> whole;  // the mid-shutter depth sees the backdrop too
     if (backdrop.behind_everything && job.output.aov_depth) whole.emplace(build.device(), motion);

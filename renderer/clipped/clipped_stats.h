@@ -7,6 +7,26 @@
 
 namespace clipblur {
 
+// render.error_target: what the pilot measured and what it chose (error_target.h).
+struct ErrorTargetStats {
+    double error_target = 0.0;
+    double pilot_estimated_error = 0.0;
+    double pilot_seconds = 0.0;
+    long long renders = 0;       // pilots, the render and a correction, if one was made
+    double sweep_spacing = 0.0;  // sweep: the chosen spacing
+    long long subframes = 0;     // point subframes: the chosen count
+
+    template <class Fields>
+    void fields(Fields& f) const {
+        f.value("error", error_target);
+        f.value("pilot_estimated_error", pilot_estimated_error);
+        f.seconds("pilot", pilot_seconds);
+        f.count("renders", renders);
+        if (sweep_spacing > 0.0) f.value("sweep_spacing", sweep_spacing);
+        if (subframes > 0) f.count("subframes", subframes);
+    }
+};
+
 // What the paper's method (and its frame-0-only ablation) did for one frame.
 struct ClippedStats {
     struct Seconds {
@@ -22,6 +42,9 @@ struct ClippedStats {
     long long measured_fragment_paths = 0, near_crossing_fragments = 0;
     long long sweep_spilled_pixels = 0, sweep_backdrop_tiles = 0;  // sweep: see SegmentTotals, MotionPlan
     bool backdrop_behind_everything = false;
+    // The image's RMS time-sampling error over R, G, B as the render estimates it (time_error.h).
+    double estimated_error = 0.0;
+    std::optional<ErrorTargetStats> target;  // render.error_target
     ReclipStats reclip;
     FrameFragmentStats open, close;
     std::optional<FrameFragmentStats> mid, backdrop;  // the mid-shutter depth set, the still backdrop
@@ -49,6 +72,7 @@ struct ClippedStats {
         f.count("capped_tiles", capped_tiles);
         f.count("measured_fragment_paths", measured_fragment_paths);
         f.count("near_crossing_fragments", near_crossing_fragments);
+        f.value("estimated_error", estimated_error);
         f.count("propagated_triangles", reclip.propagated);
         f.count("reclip_near_clipped", reclip.near_clipped);
         f.count("reclip_fragments", reclip.fragments);
@@ -67,6 +91,7 @@ struct ClippedStats {
         if (mid) f.nest("mid_", *mid);
         if (backdrop) f.nest("backdrop_", *backdrop);
         if (audit) f.nest("audit_", *audit);
+        if (target) f.nest("target_", *target);
     }
 };
 

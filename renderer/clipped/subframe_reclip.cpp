@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "renderer/check.h"
+#include "renderer/clipped/time_error.h"
 #include "renderer/visibility/frame_geometry.h"
 
 namespace clipblur {
@@ -19,6 +20,7 @@ void TileSums::reset(const PixelBounds& b) {
     depth.assign(pixels, 0.0);
     motion.assign(pixels, glm::dvec2(0.0));
     objects.assign(track_objects ? pixels : 0, {});
+    d3.assign(track_error ? pixels : 0, glm::dvec4(0.0));
 }
 
 void PolygonObjects::add(int object, double amount) {
@@ -241,17 +243,24 @@ void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, const 
             addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,
                      w * objects.shares[static_cast<std::size_t>(k)].coverage);
     };
+    // Only polygons swept over the interval's positions have coarser levels; a still one is the same at all.
+    const NestedRule rule(out.track_error ? sweep.positions : 1);
+    const auto addLevels = [&](std::size_t i, int k, double w, const glm::dvec4& value) {
+        out.d3[i] += (w * rule.to3[static_cast<std::size_t>(k)]) * value;
+    };
     for (const SweptPolygon& p : scratch.swept) {
         // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
+        const bool levels = out.track_error && p.positions == sweep.positions && p.positions >= 3;
         if (!p.coverage) {
-            forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w) {
+            forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
                 if (!out.box.contains(x, y)) return;
                 out.colour[out.box.index(x, y)] += w * p.colour;
                 if (out.track_objects) addObjects(out.box.index(x, y), w, p.objects);
+                if (levels) addLevels(out.box.index(x, y), k, w, glm::dvec4(p.colour, 0.0));
             });
             continue;
         }
-        forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w) {
+        forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
             if (!out.box.contains(x, y)) return;
             const std::size_t i = out.box.index(x, y);
             out.colour[i] += w * p.colour;
@@ -259,6 +268,7 @@ void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, const 
             out.covered[i] += w;
             out.motion[i] += w * p.motion;
             out.depth[i] += w * p.depth;
+            if (levels) addLevels(i, k, w, glm::dvec4(p.colour, 1.0));
         });
     }
 }

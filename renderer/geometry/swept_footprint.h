@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -108,7 +109,7 @@ inline double signedStretch(const glm::dmat2& map, int axis) {
 // The pixel coverage of a convex polygon q moving along `path`, averaged over `positions` equally spaced
 // times, the midpoints s = (m + 1/2) / positions - 1/2, m = 0 .. positions-1: calls add(x, y, weight) per
 // (position, pixel) with the area of that position's piece in the pixel divided by `positions` (and times
-// the shutter curve's 1 + tilt s); the
+// the shutter curve's 1 + tilt s), or add(x, y, weight, m) when `add` takes the position index too; the
 // weights sum to area(q) times the share of positions where the stretch is positive along both axes (a
 // surface turning edge-on and away is not there at the others). Axis-aligned rectangles (most fragments inside a surface are whole or partial
 // pixels) take a separable fast path. A template so that a caller summing into pixels does so directly.
@@ -211,16 +212,14 @@ void polygonCells(const SmallPolygon& p, double scale, Add&& add) {
     }
 }
 
-}  // namespace swept_detail
-
+// forEachSweptCell with add(x, y, weight, position index).
 template <class Add>
-void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add) {
-    using namespace swept_detail;
+void sweptCellsIndexed(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add) {
     if (q.degenerate() || q.n > kMaxStoredVertices) {
         if (!q.degenerate()) {  // more vertices than stored fragments have: cut it into stored-size pieces
             std::vector<ConvexPolygon> parts;
             splitToCapacity(q, kMaxStoredVertices, parts);
-            for (const ConvexPolygon& part : parts) forEachSweptCell(part, path, positions, add);
+            for (const ConvexPolygon& part : parts) sweptCellsIndexed(part, path, positions, add);
         }
         return;
     }
@@ -238,7 +237,7 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
             const glm::dvec2 at = path.pivot + offset;
             const glm::dvec2 lo = at + stretch * (box.lo - path.pivot), hi = at + stretch * (box.hi - path.pivot);
             cellOverlaps(lo.y, hi.y, [&](int y, double h) {
-                cellOverlaps(lo.x, hi.x, [&](int x, double w) { add(x, y, w * h * share); });
+                cellOverlaps(lo.x, hi.x, [&](int x, double w) { add(x, y, w * h * share, k); });
             });
         }
         return;
@@ -252,8 +251,18 @@ void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positio
         if (!(stretch.x > 0.0 && stretch.y > 0.0)) continue;
         const glm::dvec2 at = path.pivot + offset;
         for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
-        polygonCells(moved, scale * (1.0 + path.tilt * s), add);
+        polygonCells(moved, scale * (1.0 + path.tilt * s), [&](int x, int y, double w) { add(x, y, w, k); });
     }
+}
+
+}  // namespace swept_detail
+
+template <class Add>
+void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add) {
+    if constexpr (std::is_invocable_v<Add&, int, int, double, int>)
+        swept_detail::sweptCellsIndexed(q, path, positions, add);
+    else
+        swept_detail::sweptCellsIndexed(q, path, positions, [&](int x, int y, double w, int) { add(x, y, w); });
 }
 
 }  // namespace clipblur

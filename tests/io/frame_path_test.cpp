@@ -105,4 +105,14 @@ TEST(StatsWriter, WritesCountsTimingsAndPeakMemory) {
     EXPECT_GT(j.at("peak_memory_bytes").get<long long>(), 1 << 20);  // this process holds more than 1 MiB
 }
 
+TEST(StatsWriter, WritesMeasuredValuesOfTheirOwn) {
+    RenderStats stats;
+    ClippedStats clipped;
+    clipped.estimated_error = 0.125;
+    stats.method = clipped;
+    const nlohmann::json j = statsToJson(stats, StatsContext{0, "x.exr", 1, "0", "now"});
+    EXPECT_EQ(j.at("values").at("estimated_error"), 0.125);
+    EXPECT_FALSE(j.at("counts").contains("estimated_error")) << "a real number, not a count";
+}
+
 }  // namespace clipblur

@@ -1,0 +1,94 @@
+#include "renderer/clipped/error_target.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/clipped/clipped_renderer.h"
+#include "renderer/stopwatch.h"
+
+namespace clipblur {
+
+namespace {
+
+constexpr double kPilotSpacing = 1.0;  // px: where the estimate's order 2 holds (docs/performance.md)
+constexpr int kPilotSubframes = 27;    // point subframes: 9 groups of three per segment-free shutter
+constexpr double kMinSpacing = 0.01, kMaxSpacing = 1000.0;  // render.sweep_spacing's range
+
+// The pilot's job: the whole film, the given setting.
+RenderJob pilotJob(const RenderJob& job, double spacing, int subframes) {
+    RenderJob pilot = job;
+    pilot.render.window.reset();
+    pilot.render.error_target = 0.0;
+    if (job.render.time_integration == TimeIntegration::Sweep)
+        pilot.render.sweep_spacing = spacing;
+    else
+        pilot.render.subframes = subframes;
+    return pilot;
+}
+
+}  // namespace
+
+double spacingForTarget(double setting, double estimate, double target) {
+    if (!(estimate > 0.0)) return setting;
+    const double r = target / estimate;
+    return setting * (r >= 1.0 ? r : std::sqrt(r));
+}
+
+RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
+    const auto start = Clock::now();
+    const bool sweep = job.render.time_integration == TimeIntegration::Sweep;
+    const RenderCallbacks quiet{nullptr, callbacks.cancel};
+    double spacing = kPilotSpacing;
+    int subframes = std::min(kPilotSubframes, job.render.max_subframes);
+    double estimate = 0.0;
+    int renders = 0;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        const RenderResult pilot = renderClipped(pilotJob(job, spacing, subframes), frame, quiet);
+        ++renders;
+        estimate = pilot.stats.clipped().estimated_error;
+        if (estimate > 0.0 || attempt == 2) break;
+        spacing = std::max(kMinSpacing, spacing / 4.0);
+        subframes = std::min(job.render.max_subframes, subframes * 4);
+    }
+    const double pilot_seconds = secondsSince(start);
+    const double target = job.render.error_target;
+    // The setting as an interval between samples: pixels of spacing, or the shutter over the subframes.
+    const double pilot_interval = sweep ? spacing : 1.0 / subframes;
+    const auto jobAt = [&](double interval) {
+        RenderJob out = job;
+        out.render.error_target = 0.0;
+        if (sweep)
+            out.render.sweep_spacing = std::clamp(interval, kMinSpacing, kMaxSpacing);
+        else
+            out.render.subframes = std::clamp(static_cast<int>(std::ceil(1.0 / interval - 1e-9)), 1, job.render.max_subframes);
+        return out;
+    };
+    const auto intervalOf = [&](const RenderJob& j) { return sweep ? j.render.sweep_spacing : 1.0 / j.render.subframes; };
+    RenderJob final_job = jobAt(spacingForTarget(pilot_interval, estimate, target));
+    RenderResult result = renderClipped(final_job, frame, callbacks);
+    ++renders;
+    // One correction where the model missed by more than 4/3: the order measured between the pilot and
+    // this render (kept within [1, 3]) carries this render's estimate to the target.
+    const double reached = result.stats.clipped().estimated_error;
+    const double interval = intervalOf(final_job);
+    if (reached > 0.0 && estimate > 0.0 && (reached > target * 4.0 / 3.0 || reached < target * 0.75) &&
+        std::abs(std::log(interval / pilot_interval)) > 1e-6) {
+        const double order = std::clamp(std::log(reached / estimate) / std::log(interval / pilot_interval), 1.0, 3.0);
+        const RenderJob corrected = jobAt(interval * std::pow(target / reached, 1.0 / order));
+        if (intervalOf(corrected) != interval) {
+            final_job = corrected;
+            result = renderClipped(final_job, frame, callbacks);
+            ++renders;
+        }
+    }
+    ClippedStats& stats = std::get<ClippedStats>(result.stats.method);
+    stats.target = ErrorTargetStats{.error_target = job.render.error_target,
+                                    .pilot_estimated_error = estimate,
+                                    .pilot_seconds = pilot_seconds,
+                                    .renders = renders,
+                                    .sweep_spacing = sweep ? final_job.render.sweep_spacing : 0.0,
+                                    .subframes = sweep ? 0 : final_job.render.subframes};
+    return result;
+}
+
+}  // namespace clipblur

@@ -1,0 +1,22 @@
+#pragma once
+
+#include "renderer/render.h"
+
+namespace clipblur {
+
+// render.error_target: a pilot render of the whole film (so every shard of a frame chooses alike) at a
+// pilot setting measures estimated_error e0 (time_error.h); the final render's sweep spacing, or point
+// subframe count, is chosen so that the estimate reaches the target:
+//     setting x (target / e0)^(1/p),  p = 2 finer than the pilot, p = 1 coarser,
+// since positions closer than a pixel leave kinks (midpoint rule, h^2) and positions farther apart leave
+// a pixel's value nearly a step (h). Where the pilot estimates 0 (fewer than 3 samples), the pilot is
+// refined 4x, at most twice, before its setting is kept. Where the render's own estimate then misses the
+// target by more than 4/3, the order measured between pilot and render corrects it once (one more
+// render). The re-clip error of sweep is not targeted.
+RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
+
+// The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval
+// between samples: pixels of sweep spacing, or 1 / subframes), by the model above.
+double spacingForTarget(double setting, double estimate, double target);
+
+}  // namespace clipblur
