@@ -330,8 +330,6 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
     const auto stage = Clock::now();
     FragmentLayers& layers = plan.layers;
     layers.triangles = {&ends.open, ends.both_frames ? &ends.close : nullptr};
-    layers.time = {seg.window.t0, seg.window.t1};
-    layers.eye = {ctx.frame.motion.camera(seg.window.t0).position, ctx.frame.motion.camera(seg.window.t1).position};
     if (settings.path_method != PathMethod::Exact) {
         plan.ode.emplace(scene, ctx.frame.projection, seg.window.t0, seg.window.t1,
                          OdeStepping{.method = settings.path_method == PathMethod::Euler ? OdeMethod::Euler : OdeMethod::Rk4,

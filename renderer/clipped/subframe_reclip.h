@@ -26,12 +26,9 @@ struct FragmentRef {
     std::uint8_t layer = 0;
 };
 
-// The fragment triangles of both frames, how to shade them at their own frame (time and eye), and per
-// triangle its open-to-close raster motion (for the AOV).
+// The fragment triangles of both frames and per triangle its open-to-close raster motion (for the AOV).
 struct FragmentLayers {
     std::array<const std::vector<FragmentTriangle>*, 2> triangles{};
-    std::array<double, 2> time{};
-    std::array<glm::dvec3, 2> eye{};
     std::array<std::vector<glm::vec2>, 2> motion;
     const OdePropagator* ode = nullptr;  // render.path_method euler/rk4: the paper's ODE, else exact paths
 };

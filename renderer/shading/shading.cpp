@@ -88,15 +88,6 @@ Shader::Shader(const FrameMotion& motion, const EmbreeScene* shadows, FragmentSh
     }
 }
 
-bool Shader::sameFromBoth(std::uint32_t object, std::uint32_t triangle, const glm::dvec3& a, const glm::dvec3& b) const {
-    const auto& world = static_world_[object];
-    if (shadows_ || world.empty()) return false;
-    const auto& tri = scene_.objects[object].mesh.triangles[triangle];
-    const glm::dvec3 n = glm::cross(world[tri[1]] - world[tri[0]], world[tri[2]] - world[tri[0]]);
-    const double side_a = glm::dot(n, a - world[tri[0]]), side_b = glm::dot(n, b - world[tri[0]]);
-    return (side_a < 0.0) == (side_b < 0.0);
-}
-
 SurfaceGeometry Shader::geometry(const SurfacePoint& sp) const {
     const Object& object = scene_.objects[static_cast<std::size_t>(sp.object)];
     const auto& tri = object.mesh.triangles[sp.triangle];

@@ -71,11 +71,6 @@ public:
     glm::dvec3 shade(const SurfacePoint& point, const SurfaceGeometry& surface, const glm::dvec3& eye,
                      long long* shadow_rays = nullptr) const;
 
-    // True when every point of the mesh triangle shades the same seen from eye a as from eye b, at any two
-    // times of the shutter: the object does not move, no shadow can change, and both eyes are on the same
-    // side of the triangle's plane (the back-face test is all the eye decides).
-    bool sameFromBoth(std::uint32_t object, std::uint32_t triangle, const glm::dvec3& a, const glm::dvec3& b) const;
-
     const Scene& scene() const { return scene_; }
 
 private:

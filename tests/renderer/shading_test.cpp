@@ -149,8 +149,8 @@ TEST(Shading, ShadowRayBlocksAPointLight) {
     expectColour(lit.shade(p, glm::dvec3(0.25, 0.25, -0.5), &rays), glm::dvec3(0.5, 0.25, 1.0) * 2.1);
 }
 
-// Two eyes see a still triangle's points in the same colour exactly when they are on the same side of its
-// plane, and when the shading is checked against the definition: the same colour from both.
+// Two eyes see a still triangle's points in the same colour when they are on the same side of its plane;
+// one-sided, it is black from behind.
 TEST(Shading, SameFromBothEyesOnOneSideOfAStillFace) {
     Scene scene = triangleScene();
     Light light;
@@ -159,19 +159,9 @@ TEST(Shading, SameFromBothEyesOnOneSideOfAStillFace) {
     const FrameMotion motion(scene, 0.0, 1.0);
     const Shader shader(motion);
     const glm::dvec3 front_a(0.2, 0.3, -2.0), front_b(-3.0, 4.0, -0.5), back(0.2, 0.3, 1.0);
-    EXPECT_TRUE(shader.sameFromBoth(0, 0, front_a, front_b));
-    EXPECT_FALSE(shader.sameFromBoth(0, 0, front_a, back));
     const SurfacePoint p0{0, 0, 0.25, 0.25, 0.0}, p1{0, 0, 0.25, 0.25, 1.0};
     EXPECT_EQ(shader.shade(p0, front_a), shader.shade(p1, front_b));
     EXPECT_NE(shader.shade(p0, front_a), shader.shade(p1, back));  // one-sided: black from behind
-
-    Scene moving = triangleScene();
-    moving.objects[0].transform = {TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)},
-                                   TransformKey{1.0, glm::dvec3(0.0, 0.0, 1.0), {1, 0, 0, 0}, glm::dvec3(1.0)}};
-    EXPECT_FALSE(Shader(FrameMotion(moving, 0.0, 1.0)).sameFromBoth(0, 0, front_a, front_b));
-    const EmbreeDevice device;
-    const EmbreeScene embree(device, FrameMotion(scene, 0.0, 1.0));
-    EXPECT_FALSE(Shader(FrameMotion(scene, 0.0, 1.0), &embree).sameFromBoth(0, 0, front_a, front_b)) << "shadows may change";
 }
 
 }  // namespace clipblur
