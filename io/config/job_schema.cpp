@@ -362,6 +362,9 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
     r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
     if (const ConfigNode* e = map.optional("error_target")) {
         r.error_target = asNumber(*e, "render.error_target", 1e-5, 0.5);
+        if (r.method != Method::Clipped)
+            throwConfigError(e->loc, std::string("'render.error_target' is for render.method clipped, not ") +
+                                         methodName(r.method));
         // The target picks what it needs: the spacing with sweep, the subframe count without.
         if (r.time_integration == TimeIntegration::Sweep && spacing_given)
             throwConfigError(e->loc, "'render.error_target' picks sweep_spacing: leave 'render.sweep_spacing' out");

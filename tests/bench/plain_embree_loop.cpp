@@ -211,7 +211,12 @@ int main(int argc, char** argv) {
             }
         });
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        writeExr(out_path, image, {"plain_embree_loop", spp, -1, seed, "", seconds}, ExrFormat{false, ExrCompression::Zip});
+        ImageMetadata metadata;
+        metadata.method = "plain_embree_loop";
+        metadata.samples = spp;
+        metadata.seed = seed;
+        metadata.render_seconds = seconds;
+        writeExr(out_path, image, metadata, ExrFormat{false, ExrCompression::Zip});
         std::cout << "seconds " << seconds << " samples " << spp << "\n";
     } catch (const Error& e) {
         std::cerr << "clipblur_plain_loop: " << e.what() << "\n";

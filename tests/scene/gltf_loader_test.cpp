@@ -208,7 +208,7 @@ TEST(GltfLoader, StepHoldsEachKeyUntilTheNext) {
     animate(w, node, "translation", "STEP", {0, 1, 2}, {0, 0, 0, 1, 0, 0, 3, 0, 0});
     GltfRequest r = request();
     r.frames = {0, 1, 24.0};
-    r.shutter = {0.0, 0.5};  // frames 0 and 1 see (0, 0.5) and (1, 1.5); the jumps at 24 and 48 lie outside
+    r.shutter = {0.0, 0.5, {}};  // frames 0 and 1 see (0, 0.5) and (1, 1.5); the jumps at 24 and 48 lie outside
     const Object o = loadValid(w, "step", r).objects.at(0);
     for (const auto& [t, x] : std::vector<std::pair<double, double>>{
              {0, 0}, {12, 0}, {23.99, 0}, {24, 1}, {36, 1}, {47.99, 1}, {48, 3}, {100, 3}})
@@ -243,9 +243,9 @@ TEST(GltfLoader, CentredShutterMeetsAStepJumpAtItsFrame) {
     animate(w, node, "translation", "STEP", {0, 1}, {0, 0, 0, 1, 0, 0});
     GltfRequest r = request();
     r.frames = {24, 24, 24.0};
-    r.shutter = {0.0, 0.5};
+    r.shutter = {0.0, 0.5, {}};
     EXPECT_EQ(loadValid(w, "step_at_frame", r).objects.size(), 1u);
-    r.shutter = {-0.25, 0.25};
+    r.shutter = {-0.25, 0.25, {}};
     try {
         loadValid(w, "step_at_centred_frame", r);
         FAIL() << "loaded";

@@ -313,6 +313,8 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"ErrorTargetOutOfRange", "e.yaml", minimalYaml("render: {error_target: 0.9}\n"), ExitCode::Config, "0.9}", "must be in [1e-05, 0.5]"},
         ErrorCase{"ErrorTargetWithSpacing", "e.yaml", minimalYaml("render: {time_integration: sweep, sweep_spacing: 2, error_target: 0.001}\n"),
                   ExitCode::Config, "0.001}", "leave 'render.sweep_spacing' out"},
+        ErrorCase{"ErrorTargetWithStochastic", "e.yaml", minimalYaml("render: {method: stochastic, error_target: 0.001}\n"),
+                  ExitCode::Config, "0.001}", "is for render.method clipped, not stochastic"},
         ErrorCase{"ErrorTargetWithSubframes", "e.yaml", minimalYaml("render: {subframes: 8, error_target: 0.002}\n"), ExitCode::Config, "0.002}",
                   "leave 'render.subframes' at auto"},
         ErrorCase{"UnknownMaterial", "e.yaml", "version: 1\n" + kCam + "objects:\n  - {primitive: {type: box}, material: gold}\n", ExitCode::Config, "gold", "unknown material"},
