@@ -77,6 +77,10 @@ void checkObject(const Object& o, std::size_t index, const Scene& scene, const S
             throwSceneError(o.loc, name + " has a normal that is not finite");
     for (const glm::dvec2& uv : o.mesh.corner_uvs)
         if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) throwSceneError(o.loc, name + " has a UV that is not finite");
+    // Without UVs every point would read the texel at (0, 0): a lost UV export, not a texture.
+    const Material& material = scene.materials[static_cast<std::size_t>(o.material)];
+    if (!o.mesh.hasUvs() && (!material.image.file.empty() || !material.emission_image.file.empty()))
+        throwSceneError(o.loc, name + " has an image texture but no texture coordinates (OBJ 'vt', glTF TEXCOORD_0)");
 
     const auto& tlocs = itemAt(locations.transform_keys, index);
     requireIncreasing(o.transform, tlocs, o.loc, name + " transform");

@@ -70,6 +70,21 @@ TEST(SceneValidation, EmptySceneAndBadIndices) {
     EXPECT_EQ(sceneError([&] { validateScene(s); }).code(), ExitCode::Scene);
 }
 
+// An image texture on a mesh without UVs would read the texel at (0, 0) everywhere: refused at the object,
+// for the base colour and the emission image alike; with UVs it is fine.
+TEST(SceneValidation, ImageTextureNeedsUvs) {
+    for (const bool emission : {false, true}) {
+        Scene s = oneBoxScene();
+        (emission ? s.materials[0].emission_image : s.materials[0].image).file = "wood.png";
+        const Error e = sceneError([&] { validateScene(s); });
+        EXPECT_EQ(e.code(), ExitCode::Scene);
+        EXPECT_EQ(e.loc().toString(), "j.yaml:9:5");
+        EXPECT_NE(e.message().find("no texture coordinates"), std::string::npos) << e.what();
+        s.objects[0].mesh.corner_uvs.assign(3 * s.objects[0].mesh.triangles.size(), glm::dvec2(0.5));
+        EXPECT_NO_THROW(validateScene(s));
+    }
+}
+
 TEST(SceneValidation, DegenerateTrianglesAreCountedNotRemoved) {
     const glm::dvec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
     EXPECT_FALSE(isDegenerate(a, b, c));
