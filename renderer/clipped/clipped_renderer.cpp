@@ -347,12 +347,23 @@ void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, Segmen
     if (automatic && seg.subframes == 0 && !ctx.backdrop.behind_everything) {
         options.point_spacing = settings.sweep_spacing;
         MotionPlan points = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
-        options.sweep = true;
-        MotionPlan swept = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
-        std::vector<int> positions = positionsOf(ctx, seg, plan, swept);
-        const IntegrationCost cost = integrationCost(points, swept, positions);
+        // Each bound below only raises sweep's cost, so the choice is the full model's.
+        IntegrationCost cost{.points = pointsCost(points), .sweep = 0.0};
+        if (ctx.backdrop.empty()) cost.sweep = sweepFloor(points);
+        std::optional<MotionPlan> swept;
+        std::vector<int> positions;
+        if (cost.sweep < cost.points) {
+            options.sweep = true;
+            swept = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
+            // Positions only add to sweep's cost: where its re-clips alone cost more, none are laid out.
+            cost = integrationCost(points, *swept, {});
+            if (cost.sweep < cost.points) {
+                positions = positionsOf(ctx, seg, plan, *swept);
+                cost = integrationCost(points, *swept, positions);
+            }
+        }
         plan.sweep = cost.sweep < cost.points;
-        plan.motion = std::move(plan.sweep ? swept : points);
+        plan.motion = std::move(plan.sweep ? *swept : points);
         if (plan.sweep) plan.positions = std::move(positions);
         stats.auto_cost_points += cost.points;
         stats.auto_cost_sweep += cost.sweep;

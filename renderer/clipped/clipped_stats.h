@@ -43,7 +43,9 @@ struct ClippedStats {
     long long measured_fragment_paths = 0, near_crossing_fragments = 0;
     long long sweep_spilled_pixels = 0, sweep_backdrop_tiles = 0;  // sweep: see SegmentTotals, MotionPlan
     long long segments_points = 0, segments_sweep = 0;  // segments integrated by each (time_integration)
-    double auto_cost_points = 0.0, auto_cost_sweep = 0.0;  // auto: integrationCost summed over its choices
+    // auto: integrationCost summed over segments; sweep's a lower bound (sweepFloor, or without positions)
+    // where that already lost
+    double auto_cost_points = 0.0, auto_cost_sweep = 0.0;
     bool backdrop_behind_everything = false;
     // The image's RMS time-sampling error over R, G, B as the render estimates it (time_error.h).
     double estimated_error = 0.0;

@@ -15,13 +15,27 @@ constexpr double kPositionCost = 0.2;
 
 }  // namespace
 
-IntegrationCost integrationCost(const MotionPlan& points, const MotionPlan& sweep, std::span<const int> positions) {
-    const double position_total = std::accumulate(positions.begin(), positions.end(), 0.0);
-    IntegrationCost cost;
+double pointsCost(const MotionPlan& points) {
+    double cost = 0.0;
     for (std::size_t t = 0; t < points.tiles.size(); ++t) {
         const SubframePlan& p = points.tiles[t];
-        if (p.max_sweep_pixels > 0.0) cost.points += p.count * (p.fragments + kPixelCost * points.resolved[t]);
+        if (p.max_sweep_pixels > 0.0) cost += p.count * (p.fragments + kPixelCost * points.resolved[t]);
     }
+    return cost;
+}
+
+double sweepFloor(const MotionPlan& points) {
+    double floor = 0.0;
+    for (std::size_t t = 0; t < points.tiles.size(); ++t) {
+        const SubframePlan& p = points.tiles[t];
+        if (p.max_sweep_pixels > 0.0) floor += kSweepReclipCost * (p.fragments + kPixelCost * points.resolved[t]);
+    }
+    return floor;
+}
+
+IntegrationCost integrationCost(const MotionPlan& points, const MotionPlan& sweep, std::span<const int> positions) {
+    const double position_total = std::accumulate(positions.begin(), positions.end(), 0.0);
+    IntegrationCost cost{.points = pointsCost(points)};
     for (std::size_t t = 0; t < sweep.tiles.size(); ++t) {
         const SubframePlan& p = sweep.tiles[t];
         const double resolved = sweep.resolved[t];

@@ -23,4 +23,12 @@ struct IntegrationCost {
 };
 IntegrationCost integrationCost(const MotionPlan& points, const MotionPlan& sweep, std::span<const int> positions);
 
+// The points half of integrationCost.
+double pointsCost(const MotionPlan& points);
+
+// The least sweep can cost on the tiles of a point-subframe plan: one re-clip per moving tile and no
+// positions. Sweep's tiles hold the same fragments where no still backdrop is split off, so where this is
+// no less than the points' cost, sweep need not be planned at all.
+double sweepFloor(const MotionPlan& points);
+
 }  // namespace clipblur
