@@ -12,7 +12,7 @@ namespace clipblur {
 
 enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
 enum class PathMethod { Exact, Euler, RK4 };
-enum class TimeIntegration { Subframes, Sweep };
+enum class TimeIntegration { Subframes, Sweep, Auto };
 // How a clipped fragment piece gets its one colour: shaded at its area centroid with an image texture
 // filtered over the whole piece (Centroid), or cut into a fan of triangles about the centroid, each shaded
 // that way, their colours averaged by area (Fan: as many shading points as the piece has vertices), or
@@ -57,10 +57,12 @@ struct RenderSettings {
     // Subframes: the paper's point samples, every subframe re-clipped. Sweep: a subframe's re-clipped
     // fragments also stand for the rest of its interval, each moved along its own displacement to
     // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel.
-    TimeIntegration time_integration = TimeIntegration::Subframes;
+    // Auto: per shutter segment the cheaper of the two at equal spacing (point subframes then put
+    // vertices sweep_spacing pixels apart; renderer/clipped/integration_cost.h).
+    TimeIntegration time_integration = TimeIntegration::Auto;
     double sweep_spacing = 1.0;
     // Clipped: the RMS time-sampling error (R, G, B, white = 1) to aim for; 0: off. A pilot render
-    // measures estimated_error and the spacing (sweep) or subframe count (subframes) is chosen from it
+    // measures estimated_error and the spacing (sweep, auto) or subframe count (subframes) is chosen from it
     // (renderer/clipped/error_target.h).
     double error_target = 0.0;
     FragmentShading fragment_shading = FragmentShading::Integral;

@@ -357,7 +357,7 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
     r.ode_steps = map.integer("ode_steps", r.ode_steps, 1, kMaxOdeSteps);
     if (const ConfigNode* t = map.optional("time_integration"))
         r.time_integration =
-            static_cast<TimeIntegration>(asChoice(*t, "render.time_integration", {"subframes", "sweep"}));
+            static_cast<TimeIntegration>(asChoice(*t, "render.time_integration", {"subframes", "sweep", "auto"}));
     const bool spacing_given = map.has("sweep_spacing");
     r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
     if (const ConfigNode* e = map.optional("error_target")) {
@@ -365,10 +365,13 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
         if (r.method != Method::Clipped)
             throwConfigError(e->loc, std::string("'render.error_target' is for render.method clipped, not ") +
                                          methodName(r.method));
-        // The target picks what it needs: the spacing with sweep, the subframe count without.
-        if (r.time_integration == TimeIntegration::Sweep && spacing_given)
+        // The target picks what it needs: the spacing with sweep and auto, the subframe count with point
+        // subframes; under auto a fixed subframe count would mean point subframes at that count.
+        const bool spacing = r.time_integration != TimeIntegration::Subframes;
+        const bool count = r.time_integration != TimeIntegration::Sweep;
+        if (spacing && spacing_given)
             throwConfigError(e->loc, "'render.error_target' picks sweep_spacing: leave 'render.sweep_spacing' out");
-        if (r.time_integration == TimeIntegration::Subframes && r.subframes > 0)
+        if (count && r.subframes > 0)
             throwConfigError(e->loc, "'render.error_target' picks the subframe count: leave 'render.subframes' at auto");
     }
     if (const ConfigNode* f = map.optional("fragment_shading"))

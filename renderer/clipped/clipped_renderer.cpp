@@ -17,6 +17,7 @@
 #include "renderer/clipped/frame_fragments.h"
 #include "renderer/clipped/guard_band.h"
 #include "renderer/clipped/hidden_probe.h"
+#include "renderer/clipped/integration_cost.h"
 #include "renderer/clipped/motion_plan.h"
 #include "renderer/clipped/shutter_segments.h"
 #include "renderer/clipped/still_backdrop.h"
@@ -315,10 +316,65 @@ struct SegmentPlan {
     FragmentLayers layers;
     std::optional<OdePropagator> ode;
     MotionPlan motion;
+    bool sweep = false;  // the segment's time integration, time_integration auto resolved
     int intervals = 1;
     std::vector<int> positions;        // sweep: per interval
     std::vector<IntervalTurns> turns;  // sweep: a turning camera's turns per interval
 };
+
+// Sweep positions per interval of a sweep plan.
+std::vector<int> positionsOf(const ClippedContext& ctx, const SegmentSpec& seg, const SegmentPlan& plan,
+                             const MotionPlan& motion) {
+    int intervals = 1;
+    for (const SubframePlan& p : motion.tiles) intervals = std::max(intervals, p.count);
+    return sweepPositions(ctx.job.scene, ctx.frame.projection, plan.layers,
+                          {.t0 = seg.window.t0,
+                           .t1 = seg.window.t1,
+                           .intervals = intervals,
+                           .spacing = ctx.job.render.sweep_spacing,
+                           .max_positions = ctx.job.render.max_subframes});
+}
+
+// The tile plans and, for time_integration auto, which of point subframes and sweep the segment uses:
+// both are planned from one measurement and the cheaper by integrationCost is kept. A fixed subframe
+// count is point subframes' (nothing to trade at equal spacing), and a backdrop left out of the fragment
+// sets (Backdrop::behind_everything) is only composited by sweep.
+void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, SegmentPlan& plan, ClippedStats& stats) {
+    const RenderSettings& settings = ctx.job.render;
+    const FragmentPaths paths = measurePaths(ctx.frame, seg.window, plan.layers);
+    MotionPlanOptions options{.subframes = seg.subframes, .max_subframes = settings.max_subframes, .backdrop = ctx.backdrop};
+    const bool automatic = settings.time_integration == TimeIntegration::Auto;
+    if (automatic && seg.subframes == 0 && !ctx.backdrop.behind_everything) {
+        options.point_spacing = settings.sweep_spacing;
+        MotionPlan points = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
+        // Each bound below only raises sweep's cost, so the choice is the full model's.
+        IntegrationCost cost{.points = pointsCost(points), .sweep = 0.0};
+        if (ctx.backdrop.empty()) cost.sweep = sweepFloor(points);
+        std::optional<MotionPlan> swept;
+        std::vector<int> positions;
+        if (cost.sweep < cost.points) {
+            options.sweep = true;
+            swept = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
+            // Positions only add to sweep's cost: where its re-clips alone cost more, none are laid out.
+            cost = integrationCost(points, *swept, {});
+            if (cost.sweep < cost.points) {
+                positions = positionsOf(ctx, seg, plan, *swept);
+                cost = integrationCost(points, *swept, positions);
+            }
+        }
+        plan.sweep = cost.sweep < cost.points;
+        plan.motion = std::move(plan.sweep ? *swept : points);
+        if (plan.sweep) plan.positions = std::move(positions);
+        stats.auto_cost_points += cost.points;
+        stats.auto_cost_sweep += cost.sweep;
+    } else {
+        plan.sweep = settings.time_integration == TimeIntegration::Sweep || (automatic && seg.subframes == 0);
+        options.sweep = plan.sweep;
+        plan.motion = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
+        if (plan.sweep) plan.positions = positionsOf(ctx, seg, plan, plan.motion);
+    }
+    ++(plan.sweep ? stats.segments_sweep : stats.segments_points);
+}
 
 // Re-clips per tile from the fragments' image-plane speeds (eq. 24, corrected) or, with sweep
 // integration, from relative motion and path bend (planMotion).
@@ -326,7 +382,6 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
                  SegmentPlan& plan) {
     const Scene& scene = ctx.job.scene;
     const RenderSettings& settings = ctx.job.render;
-    const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
     const auto stage = Clock::now();
     FragmentLayers& layers = plan.layers;
     layers.triangles = {&ends.open, ends.both_frames ? &ends.close : nullptr};
@@ -340,23 +395,13 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
         layers.motion[0] = fragmentMotion(ctx.frame, ends.open);
         if (ends.both_frames) layers.motion[1] = fragmentMotion(ctx.frame, ends.close);
     }
-    plan.motion = planMotion(ctx.frame, seg.window, layers,
-                             {.subframes = seg.subframes,
-                              .max_subframes = settings.max_subframes,
-                              .sweep = sweeping,
-                              .backdrop = ctx.backdrop});
+    chooseIntegration(ctx, seg, plan, totals.stats);
     totals.stats.capped_tiles += plan.motion.capped_tiles;
     totals.stats.measured_fragment_paths += plan.motion.measured;
     totals.stats.near_crossing_fragments += plan.motion.near_crossings;
     totals.stats.sweep_backdrop_tiles += plan.motion.backdrop_tiles;
     for (const SubframePlan& p : plan.motion.tiles) plan.intervals = std::max(plan.intervals, p.count);
-    if (sweeping) {
-        plan.positions = sweepPositions(scene, ctx.frame.projection, layers,
-                                        {.t0 = seg.window.t0,
-                                         .t1 = seg.window.t1,
-                                         .intervals = plan.intervals,
-                                         .spacing = settings.sweep_spacing,
-                                         .max_positions = settings.max_subframes});
+    if (plan.sweep) {
         const double h = (seg.window.t1 - seg.window.t0) / plan.intervals;
         for (int k = 0; k < plan.intervals; ++k)
             plan.turns.push_back(intervalTurns(scene, ctx.frame.projection, seg.window.t0 + k * h, seg.window.t0 + (k + 1) * h,
@@ -462,7 +507,7 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     const SegmentPlan& plan = segment.plan;
     const Scene& scene = ctx.job.scene;
     const RenderSettings& settings = ctx.job.render;
-    const bool sweeping = settings.time_integration == TimeIntegration::Sweep;
+    const bool sweeping = plan.sweep;
     const bool track_objects = ctx.job.output.cryptomatte.enabled;
     const double ts = seg.window.t0, te = seg.window.t1;
     const PixelBounds tile = ctx.frame.grid.tile(index);
@@ -555,7 +600,7 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     std::atomic<long long> tiles_done{0};
     std::mutex merge_mutex;
     const long long progress_total = static_cast<long long>(ctx.frame.grid.count()) * static_cast<long long>(seg.bands.size());
-    const bool sweeping = ctx.job.render.time_integration == TimeIntegration::Sweep;
+    const bool sweeping = plan.sweep;
     std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.frame.grid.count()) : 0);
     // Scratch buffers per thread, not per task (allocating them is page faults). Every use clears what it
     // reads, and reclipSubframe starts no TBB work, so a thread never holds its scratch across a steal.
@@ -699,7 +744,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     SegmentTotals totals;
     ClippedStats& stats = totals.stats;
     stats.both_frames = settings.method != Method::Frame0Only;
-    stats.sweep = settings.time_integration == TimeIntegration::Sweep;
+    stats.auto_integration = settings.time_integration == TimeIntegration::Auto;
     stats.ode = settings.path_method != PathMethod::Exact;
     stats.tiles = ctx.frame.grid.count();
     stats.triangles = setup.embree.stats().triangles;
@@ -709,6 +754,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const std::vector<ShutterSegment> segments = shutterSegmentsOf(ctx, stats, result.stats.warnings);
     WindowSums sums(ctx.window.area(), job.output.cryptomatte.enabled);
     renderSegments(ctx, segments, sums, totals);
+    stats.sweep = stats.segments_sweep > 0;
     stats.estimated_error = estimateTimeError(sums.levels);
     FrameFragmentStats mid_stats;
     std::optional<EmbreeScene> whole;  // the mid-shutter depth sees the backdrop too

@@ -34,13 +34,18 @@ struct ClippedStats {
         double frame_fragments = 0.0, motion_plan = 0.0, tiles = 0.0;  // the parts of `segments`
     } seconds;
     bool both_frames = true;  // false: render.method frame0_only
-    bool sweep = false;       // render.time_integration sweep
+    bool sweep = false;       // some segment was integrated by sweep
+    bool auto_integration = false;  // render.time_integration auto
     bool ode = false;         // render.path_method euler or rk4
     long long tiles = 0, triangles = 0, segments = 0, frame_sets = 0, guard_band_pixels = 0;
     long long hidden_probe_samples = 0, hidden_probe_hits = 0;
     long long still_tiles = 0, subframes_total = 0, subframes_max_per_tile = 0, capped_tiles = 0;
     long long measured_fragment_paths = 0, near_crossing_fragments = 0;
     long long sweep_spilled_pixels = 0, sweep_backdrop_tiles = 0;  // sweep: see SegmentTotals, MotionPlan
+    long long segments_points = 0, segments_sweep = 0;  // segments integrated by each (time_integration)
+    // auto: integrationCost summed over segments; sweep's a lower bound (sweepFloor, or without positions)
+    // where that already lost
+    double auto_cost_points = 0.0, auto_cost_sweep = 0.0;
     bool backdrop_behind_everything = false;
     // The image's RMS time-sampling error over R, G, B as the render estimates it (time_error.h).
     double estimated_error = 0.0;
@@ -65,6 +70,12 @@ struct ClippedStats {
         f.count("hidden_probe_samples", hidden_probe_samples);
         f.count("hidden_probe_hits", hidden_probe_hits);
         f.count("frame_sets", frame_sets);
+        f.count("segments_points", segments_points);
+        f.count("segments_sweep", segments_sweep);
+        if (auto_integration) {
+            f.value("auto_cost_points", auto_cost_points);
+            f.value("auto_cost_sweep", auto_cost_sweep);
+        }
         f.count("guard_band_pixels", guard_band_pixels);
         f.count("still_tiles", still_tiles);
         f.count("subframes_total", subframes_total);

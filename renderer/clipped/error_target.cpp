@@ -19,7 +19,7 @@ RenderJob pilotJob(const RenderJob& job, double spacing, int subframes) {
     RenderJob pilot = job;
     pilot.render.window.reset();
     pilot.render.error_target = 0.0;
-    if (job.render.time_integration == TimeIntegration::Sweep)
+    if (job.render.time_integration != TimeIntegration::Subframes)
         pilot.render.sweep_spacing = spacing;
     else
         pilot.render.subframes = subframes;
@@ -36,7 +36,8 @@ double spacingForTarget(double setting, double estimate, double target) {
 
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     const auto start = Clock::now();
-    const bool sweep = job.render.time_integration == TimeIntegration::Sweep;
+    // Sweep and auto are tuned by the spacing (auto spaces point subframes by it too).
+    const bool sweep = job.render.time_integration != TimeIntegration::Subframes;
     const RenderCallbacks quiet{nullptr, callbacks.cancel};
     double spacing = kPilotSpacing;
     int subframes = std::min(kPilotSubframes, job.render.max_subframes);

@@ -5,8 +5,9 @@
 namespace clipblur {
 
 // render.error_target: a pilot render of the whole film (so every shard of a frame chooses alike) at a
-// pilot setting measures estimated_error e0 (time_error.h); the final render's sweep spacing, or point
-// subframe count, is chosen so that the estimate reaches the target:
+// pilot setting measures estimated_error e0 (time_error.h); the final render's sweep spacing (sweep, and
+// auto, whose point subframes it spaces too), or point subframe count, is chosen so that the estimate
+// reaches the target:
 //     setting x (target / e0)^(1/p),  p = 2 finer than the pilot, p = 1 coarser,
 // since positions closer than a pixel leave kinks (midpoint rule, h^2) and positions farther apart leave
 // a pixel's value nearly a step (h). Where the pilot estimates 0 (fewer than 3 samples), the pilot is

@@ -90,42 +90,62 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
     return relative;
 }
 
+// The pixels of `tile` a re-clip of `refs` resolves, for the cost of one (integrationCost): each fragment
+// triangle's area at open shared out over its swept box by how much of the box lies in the tile, summed,
+// at most the tile's area. Backdrop fragments split off (splitBackdrop) are not in refs.
+double resolvedPixels(const std::vector<FragmentRef>& refs, const FragmentPaths& paths, const PixelBounds& tile) {
+    const double tile_area = static_cast<double>(tile.area());
+    double covered = 0.0;
+    for (const FragmentRef& ref : refs) {
+        const FragmentMotion& fm = paths.motion[ref.layer][ref.index];
+        const double area = paths.area[ref.layer][ref.index];
+        if (fm.crosses_near || !std::isfinite(area)) return tile_area;
+        const glm::dvec2 size = fm.swept.hi - fm.swept.lo;
+        const glm::dvec2 lo = glm::max(fm.swept.lo, glm::dvec2(tile.x0, tile.y0)),
+                         hi = glm::min(fm.swept.hi, glm::dvec2(tile.x1, tile.y1));
+        const glm::dvec2 inside = glm::max(hi - lo, glm::dvec2(0.0));
+        const double box = size.x * size.y;
+        covered += box > 0.0 ? area * (inside.x * inside.y) / box : 0.0;
+        if (covered >= tile_area) return tile_area;
+    }
+    return covered;
+}
+
 }  // namespace
 
-MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers,
-                      const MotionPlanOptions& options) {
+FragmentPaths measurePaths(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers) {
     const Scene& scene = frame.scene();
     const Projection& projection = frame.projection;
-    const TileGrid& grid = frame.grid;
-    const double t0 = window.t0, t1 = window.t1;
-    const int subframes = options.subframes, max_subframes = options.max_subframes;
-    const bool sweep = options.sweep;
-    const Backdrop& backdrop = options.backdrop;
-
     // Few intervals: the swept box keeps a speed-times-gap margin, and the count uses peak speed.
-    const ShutterPathSampler sampler(scene, projection, t0, t1, 2);
-    const MotionSnapshot open(scene, projection, t0);
+    const ShutterPathSampler sampler(scene, projection, window.t0, window.t1, 2);
+    const MotionSnapshot open(scene, projection, window.t0);
 
-    std::array<std::vector<FragmentMotion>, 2> motion;
-    MotionPlan plan;
+    FragmentPaths paths;
     for (int layer = 0; layer < 2; ++layer) {
         const auto* triangles = layers.triangles[static_cast<std::size_t>(layer)];
         if (!triangles) continue;
-        auto& m = motion[static_cast<std::size_t>(layer)];
+        auto& m = paths.motion[static_cast<std::size_t>(layer)];
+        auto& area = paths.area[static_cast<std::size_t>(layer)];
         m.resize(triangles->size());
+        area.resize(triangles->size());
         tbb::parallel_for(std::size_t(0), triangles->size(), [&](std::size_t i) {
             const FragmentTriangle& t = (*triangles)[i];
             const std::array<MeshPoint, 3> points{MeshPoint{t.object, t.triangle, t.bary[0]},
                                                   MeshPoint{t.object, t.triangle, t.bary[1]},
                                                   MeshPoint{t.object, t.triangle, t.bary[2]}};
+            std::array<ProjectedPoint, 3> q;
+            for (int v = 0; v < 3; ++v) q[static_cast<std::size_t>(v)] = project(open, scene, points[static_cast<std::size_t>(v)]);
+            const glm::dvec2 e1 = q[1].raster - q[0].raster, e2 = q[2].raster - q[0].raster;
+            // A vertex behind the camera: no bounded image, so as if it covered everything it reaches.
+            area[i] = q[0].behind || q[1].behind || q[2].behind ? std::numeric_limits<double>::infinity()
+                                                               : 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x);
             if (window.stillInImage(t.object)) {
                 FragmentMotion fm;
-                for (const MeshPoint& p : points) {
-                    const ProjectedPoint q = project(open, scene, p);
-                    fm.swept.expand(q.raster);
-                    fm.start += q.raster / 3.0;
-                    fm.min_depth = std::min(fm.min_depth, q.depth);
-                    fm.max_depth = std::max(fm.max_depth, q.depth);
+                for (const ProjectedPoint& p : q) {
+                    fm.swept.expand(p.raster);
+                    fm.start += p.raster / 3.0;
+                    fm.min_depth = std::min(fm.min_depth, p.depth);
+                    fm.max_depth = std::max(fm.max_depth, p.depth);
                 }
                 fm.end = fm.start;
                 m[i] = fm;
@@ -133,12 +153,25 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
                 m[i] = sampler.measure(points);
             }
         });
-        for (std::size_t i = 0; i < triangles->size(); ++i) plan.measured += window.stillInImage((*triangles)[i].object) ? 0 : 1;
+        for (std::size_t i = 0; i < triangles->size(); ++i) paths.measured += window.stillInImage((*triangles)[i].object) ? 0 : 1;
     }
+    return paths;
+}
+
+MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers,
+                      const FragmentPaths& paths, const MotionPlanOptions& options) {
+    const TileGrid& grid = frame.grid;
+    const int subframes = options.subframes, max_subframes = options.max_subframes;
+    const bool sweep = options.sweep;
+    const Backdrop& backdrop = options.backdrop;
+    const std::array<std::vector<FragmentMotion>, 2>& motion = paths.motion;
+    MotionPlan plan;
+    plan.measured = paths.measured;
 
     const int count = grid.count();
     plan.refs.resize(static_cast<std::size_t>(count));
     plan.backdrop.resize(static_cast<std::size_t>(count));
+    plan.resolved.resize(static_cast<std::size_t>(count));
     plan.tiles.resize(static_cast<std::size_t>(count));
     const double size = grid.tileSize();
     for (int layer = 0; layer < 2; ++layer) {
@@ -172,6 +205,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
                 backdrop.behind_everything || splitBackdrop(refs, motion, backdrop.objects, object);
         SubframePlan& p = plan.tiles[static_cast<std::size_t>(index)];
         p = SubframePlan{};
+        plan.resolved[static_cast<std::size_t>(index)] = resolvedPixels(refs, paths, grid.tile(index));
         for (const FragmentRef& ref : refs) {
             const FragmentMotion& fm = motion[ref.layer][ref.index];
             ++p.fragments;
@@ -188,7 +222,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
         if (subframes > 0) {
             p.count = std::min(subframes, max_subframes);
         } else if (!sweep) {
-            p.count = subframeCount(p.max_sweep_pixels, max_subframes, &p.capped);
+            p.count = subframeCount(p.max_sweep_pixels / options.point_spacing, max_subframes, &p.capped);
         } else {
             // Sweep integration moves each fragment along its own path between re-clips, so what one
             // surface does smoothly (a pan, a roll, a dolly) needs no re-clip. Re-clips follow what is

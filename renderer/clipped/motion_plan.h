@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "renderer/clipped/still_backdrop.h"
@@ -17,6 +18,8 @@ struct MotionPlan {
     // moving one that can reach the tile stays nearer than all of them for the whole segment. Elsewhere the
     // tile re-clips everything together.
     std::vector<char> backdrop;
+    // Per tile: about how many of its pixels a re-clip resolves (covered by its refs), for integrationCost.
+    std::vector<double> resolved;
     std::vector<std::uint32_t> groups;  // per object, its motion group over the segment (motionGroups)
     long long backdrop_tiles = 0;
     long long capped_tiles = 0;
@@ -24,9 +27,19 @@ struct MotionPlan {
     long long near_crossings = 0;  // fragment triangles reaching the camera plane during the shutter
 };
 
-// Measures every fragment triangle's swept raster box and peak speed over the window (triangles of objects
-// that do not move under a still camera are measured at t0 only), bins them to the tiles their swept
-// box overlaps, and plans each tile's subframes (the corrected eq. 24). subframes > 0 forces that count.
+// Every fragment triangle's swept raster box, peak speed and path shape over a segment, per layer
+// (triangles of objects that do not move under a still camera are measured at t0 only).
+struct FragmentPaths {
+    std::array<std::vector<FragmentMotion>, 2> motion;
+    std::array<std::vector<double>, 2> area;  // raster area at the segment's start; infinity behind the camera
+    long long measured = 0;  // fragment triangles whose path was sampled
+};
+FragmentPaths measurePaths(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers);
+
+// Bins the measured fragment triangles to the tiles their swept box overlaps and plans each tile's
+// subframes (the corrected eq. 24, vertices moving point_spacing pixels between subframes; 1 but under
+// time_integration auto). subframes > 0 forces that count. One FragmentPaths serves both plans, so
+// time_integration auto measures once and plans twice.
 // With `sweep` (render.time_integration: sweep) the count follows relative motion and path curvature, and
 // every moving tile gets the same count. With a `backdrop` (findBackdrop), still objects behind everything
 // that moves near a tile are split off there (MotionPlan::backdrop) and their motion relative to the rest is
@@ -36,10 +49,11 @@ struct MotionPlanOptions {
     int subframes = 0;  // > 0: every tile's count
     int max_subframes = 1;
     bool sweep = false;
+    double point_spacing = 1.0;  // point subframes: pixels a vertex moves between them
     const Backdrop& backdrop;
 };
 MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers,
-                      const MotionPlanOptions& options);
+                      const FragmentPaths& paths, const MotionPlanOptions& options);
 
 // How sweep positions are laid out: `intervals` equal intervals of [t0, t1], at most `spacing` pixels and
 // at most `max_positions` positions apart.

@@ -21,8 +21,9 @@ struct Backdrop {
     bool empty() const { return objects.empty(); }
 };
 
-// Empty for a moving camera, shadows (moving objects would cast them on the backdrop), point subframes,
-// or when nothing or everything is still.
+// Empty for a moving camera, shadows (moving objects would cast them on the backdrop), point subframes
+// (time_integration subframes, or auto with a fixed subframe count), or when nothing or everything is
+// still. Under auto a backdrop behind everything makes every segment sweep (the fragment sets leave it out).
 Backdrop findBackdrop(const RenderJob& job, const FrameMotion& motion);
 
 // The backdrop's image: the still objects alone, resolved and shaded as a still frame. With no light

@@ -74,6 +74,8 @@ def base_overrides(width, height):
 
 def ladder_overrides(method, rung):
     o = {"render.method": method, LADDER_KEY[method]: rung}
+    if method == "clipped":
+        o["render.time_integration"] = "subframes"  # the paper's point subframes, not the default auto
     if method == "clipped" and rung != "auto":
         o["render.max_subframes"] = max(256, int(rung))
     return o
@@ -100,6 +102,15 @@ def sweep_spacing_overrides(rung):
     o = {"render.method": "clipped", "render.time_integration": "sweep"}
     if rung != "auto":
         o["render.sweep_spacing"] = SWEEP_SPACING_1 / float(rung)  # rungs below 1 (0.5, 0.25) are coarser
+    return o
+
+
+# time_integration auto (the default) along the same spacings: each segment picks point subframes or
+# sweep, both placed SWEEP_SPACING_1 / r pixels apart at rung r.
+def auto_spacing_overrides(rung):
+    o = {"render.method": "clipped", "render.time_integration": "auto"}
+    if rung != "auto":
+        o["render.sweep_spacing"] = SWEEP_SPACING_1 / float(rung)
     return o
 
 

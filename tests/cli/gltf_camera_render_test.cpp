@@ -60,6 +60,7 @@ TEST(GltfRender, SpinPanCameraFromGltfRendersLikeTheYamlKeys) {
     std::ofstream(dir / "yaml.yaml") << yaml;
     std::ofstream(dir / "gltf.yaml") << gltf_job;
     const std::string common = " --set frames.fps=1 --set film.width=160 --set film.height=90 --set output.half=false"
+                               " --set render.time_integration=subframes"
                                " --set output.png_preview=false --progress none > /dev/null 2>&1";
     const std::string bin = CLIPBLUR_BINARY;
     ASSERT_EQ(testing::runShell(bin + " render " + (dir / "yaml.yaml").string() + " --out " + (dir / "yaml.exr").string() + common), 0);

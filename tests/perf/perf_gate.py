@@ -65,7 +65,8 @@ MANY_SCENES = ["particles", "street", "deforming", "building_dolly"]
 MANY_COUNTS = ["segments", "frame_sets", "subframes_total", "subframes_max_per_tile", "capped_tiles",
                "reclip_fragments", "sweep_positions", "sweep_spilled_pixels", "sweep_unswept_fragments"]
 # What each gate method renders, on top of the scene's own settings.
-METHOD_SETTINGS = {"clipped": ["render.method=clipped"],
+# Point subframes explicitly: the default time_integration is auto, which sweeps the gate scene.
+METHOD_SETTINGS = {"clipped": ["render.method=clipped", "render.time_integration=subframes"],
                    "sweep": ["render.method=clipped", "render.time_integration=sweep"],
                    "stochastic": ["render.method=stochastic"]}
 

@@ -231,6 +231,7 @@ TEST(JobLoader, DefaultsWhenOptionalSectionsAreAbsent) {
     EXPECT_EQ(job.scene.film.width, defaults.scene.film.width);
     EXPECT_EQ(job.render.samples, defaults.render.samples);
     EXPECT_EQ(job.render.subframes, 0);
+    EXPECT_EQ(job.render.time_integration, TimeIntegration::Auto);
     ASSERT_EQ(job.scene.materials.size(), 1u);
     EXPECT_EQ(job.scene.objects[0].name, "object0");
     EXPECT_EQ(job.scene.objects[0].mesh.triangles.size(), 12u);
@@ -315,6 +316,13 @@ INSTANTIATE_TEST_SUITE_P(
                   ExitCode::Config, "0.001}", "leave 'render.sweep_spacing' out"},
         ErrorCase{"ErrorTargetWithStochastic", "e.yaml", minimalYaml("render: {method: stochastic, error_target: 0.001}\n"),
                   ExitCode::Config, "0.001}", "is for render.method clipped, not stochastic"},
+        ErrorCase{"ErrorTargetWithSpacingUnderAuto", "e.yaml", minimalYaml("render: {sweep_spacing: 2, error_target: 0.003}\n"),
+                  ExitCode::Config, "0.003}", "leave 'render.sweep_spacing' out"},
+        ErrorCase{"ErrorTargetWithSubframesUnderAuto", "e.yaml",
+                  minimalYaml("render: {time_integration: auto, subframes: 4, error_target: 0.004}\n"), ExitCode::Config, "0.004}",
+                  "leave 'render.subframes' at auto"},
+        ErrorCase{"UnknownTimeIntegration", "e.yaml", minimalYaml("render: {time_integration: smart}\n"), ExitCode::Config, "smart",
+                  "one of subframes, sweep, auto"},
         ErrorCase{"ErrorTargetWithSubframes", "e.yaml", minimalYaml("render: {subframes: 8, error_target: 0.002}\n"), ExitCode::Config, "0.002}",
                   "leave 'render.subframes' at auto"},
         ErrorCase{"UnknownMaterial", "e.yaml", "version: 1\n" + kCam + "objects:\n  - {primitive: {type: box}, material: gold}\n", ExitCode::Config, "gold", "unknown material"},
@@ -362,6 +370,23 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return std::string(info.param.name); });
 
 // A centred 180-degree shutter with a trapezoid curve, the example of docs/config.md, in both spellings.
+// Every time integration is read by name, and the error target sits beside the one setting it leaves free.
+TEST(JobLoader, TimeIntegrationByName) {
+    const struct {
+        const char* yaml;
+        TimeIntegration expected;
+    } cases[] = {{"render: {time_integration: subframes}\n", TimeIntegration::Subframes},
+                 {"render: {time_integration: sweep}\n", TimeIntegration::Sweep},
+                 {"render: {time_integration: auto}\n", TimeIntegration::Auto},
+                 {"render: {time_integration: auto, error_target: 0.002, max_subframes: 64}\n", TimeIntegration::Auto},
+                 {"render: {time_integration: subframes, sweep_spacing: 2, error_target: 0.002}\n", TimeIntegration::Subframes},
+                 {"render: {time_integration: sweep, subframes: 3, error_target: 0.002}\n", TimeIntegration::Sweep}};
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.yaml);
+        EXPECT_EQ(loadJobFromText(minimalYaml(c.yaml), "/nonexistent/m.yaml").render.time_integration, c.expected);
+    }
+}
+
 TEST(JobLoader, CentredShutterWithCurveIsAccepted) {
     const RenderJob yaml = loadJobFromText(
         minimalYaml("shutter:\n  open: -0.25\n  close: 0.25\n  curve: [[-0.25, 0], [-0.15, 1], [0.15, 1], [0.25, 0]]\n"),

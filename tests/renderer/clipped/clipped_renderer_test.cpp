@@ -129,6 +129,7 @@ TEST(ClippedRenderer, TranslatingQuadConvergesToExactTimeIntegratedCoverage) {
 
     RenderJob job = clippedJob();
     job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
+    job.render.time_integration = TimeIntegration::Subframes;  // eq. 24's own count
     const RenderResult r = renderFrame(job, 0);
     EXPECT_EQ(r.stats.clipped().subframes_max_per_tile, 12) << "ceil(|v|) = ceil(11.99)";
     EXPECT_LT(maxError(r, expected), bound(12));

@@ -111,8 +111,9 @@ TEST(ShutterSegments, SingleSegmentMissesWhatBothEndsHide) {
         extra.insert(extra.end(), common.begin(), common.end());
         return loadJob(path, extra);
     };
-    const RenderResult one = renderFrame(load({"render.method=clipped", "render.segments=1"}), 0);
-    const RenderResult automatic = renderFrame(load({"render.method=clipped"}), 0);
+    // Point subframes: under sweep the wall is a still backdrop, rendered whole on its own.
+    const RenderResult one = renderFrame(load({"render.method=clipped", "render.time_integration=subframes", "render.segments=1"}), 0);
+    const RenderResult automatic = renderFrame(load({"render.method=clipped", "render.time_integration=subframes"}), 0);
     const RenderResult reference = renderFrame(load({"render.method=accumulation", "render.samples=64"}), 0);
     const RenderJob job = load({});
     EXPECT_EQ(shutterSegments(FrameMotion(job.scene, 0.0, 1.0), 0, job.render.max_segments), 6);  // 90 degrees / 15

@@ -24,10 +24,12 @@ using test::rasterQuad;
 // A white wall over the whole 32x32 film at depth 10 and two white quads over rows [8, 24): A at depth 5
 // moves from columns [4, 12) to [20, 28), B at depth 6 from [20, 28) to [4, 12). Each ends where the other
 // started, so the wall behind [4, 12) and [20, 28) is hidden at shutter open (by A, then B) and at close
-// (by B, then A), and shows in the middle of the shutter, when both quads are over [12, 20).
+// (by B, then A), and shows in the middle of the shutter, when both quads are over [12, 20). Point
+// subframes: under sweep the wall is a still backdrop, rendered on its own, and nothing is hidden.
 RenderJob crossingJob() {
     RenderJob job = test::squareFilmJob();
     job.render.method = Method::Clipped;
+    job.render.time_integration = TimeIntegration::Subframes;
     job.scene.objects.push_back(rasterQuad(-8.0, -8.0, 40.0, 40.0, 10.0));
     job.scene.objects.push_back(movingQuad(4.0, 8.0, 12.0, 24.0, 5.0, {16.0, 0.0}));
     job.scene.objects.push_back(movingQuad(20.0, 8.0, 28.0, 24.0, 6.0, {-16.0, 0.0}));
