@@ -15,6 +15,8 @@ struct ErrorTargetStats {
     long long renders = 0;       // pilots, the render and a correction, if one was made
     double sweep_spacing = 0.0;  // sweep: the chosen spacing
     long long subframes = 0;     // point subframes: the chosen count
+    double reached_error = 0.0;  // what the choice was judged by: against the pilot, or the estimate
+    bool against_pilot = false;  // the render was well coarser than the pilot and measured against it
 
     template <class Fields>
     void fields(Fields& f) const {
@@ -24,6 +26,7 @@ struct ErrorTargetStats {
         f.count("renders", renders);
         if (sweep_spacing > 0.0) f.value("sweep_spacing", sweep_spacing);
         if (subframes > 0) f.count("subframes", subframes);
+        f.value(against_pilot ? "error_against_pilot" : "estimated_error", reached_error);
     }
 };
 

@@ -13,6 +13,7 @@ namespace {
 constexpr double kPilotSpacing = 1.0;  // px: where the estimate's order 2 holds (docs/performance.md)
 constexpr int kPilotSubframes = 27;    // point subframes: 9 groups of three per segment-free shutter
 constexpr double kMinSpacing = 0.01, kMaxSpacing = 1000.0;  // render.sweep_spacing's range
+constexpr double kMeasuredRatio = 1.5;  // a render this much coarser than the pilot is measured against it
 
 // The pilot's job: the whole film, the given setting.
 RenderJob pilotJob(const RenderJob& job, double spacing, int subframes) {
@@ -28,6 +29,24 @@ RenderJob pilotJob(const RenderJob& job, double spacing, int subframes) {
 
 }  // namespace
 
+double rmsDifference(const Image& fine, const Image& image) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const char* name : {"R", "G", "B"}) {
+        const Image::Channel* a = fine.find(name);
+        const Image::Channel* b = image.find(name);
+        if (!a || !b) continue;
+        const PixelBounds& w = image.window;
+        for (int y = w.y0; y < w.y1; ++y)
+            for (int x = w.x0; x < w.x1; ++x) {
+                const double d = double(b->values[image.index(x, y)]) - a->values[fine.index(x, y)];
+                sum += d * d;
+                ++n;
+            }
+    }
+    return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+}
+
 double spacingForTarget(double setting, double estimate, double target) {
     if (!(estimate > 0.0)) return setting;
     const double r = target / estimate;
@@ -41,10 +60,11 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     const RenderCallbacks quiet{nullptr, callbacks.cancel};
     double spacing = kPilotSpacing;
     int subframes = std::min(kPilotSubframes, job.render.max_subframes);
+    RenderResult pilot;
     double estimate = 0.0;
     int renders = 0;
     for (int attempt = 0; attempt < 3; ++attempt) {
-        const RenderResult pilot = renderClipped(pilotJob(job, spacing, subframes), frame, quiet);
+        pilot = renderClipped(pilotJob(job, spacing, subframes), frame, quiet);
         ++renders;
         estimate = pilot.stats.clipped().estimated_error;
         if (estimate > 0.0 || attempt == 2) break;
@@ -65,22 +85,33 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
         return out;
     };
     const auto intervalOf = [&](const RenderJob& j) { return sweep ? j.render.sweep_spacing : 1.0 / j.render.subframes; };
+    const auto measured = [&](const RenderJob& j) { return intervalOf(j) >= kMeasuredRatio * pilot_interval; };
+    // A render coarser than the pilot is judged against the pilot image: the two error fields are nearly
+    // independent, so the difference is sqrt(e^2 + e_pilot^2), within 1.2x of the render's own e when the
+    // pilot's is under 2/3 of it (order >= 1 at 1.5x the interval). Its own estimate falls 1.3-3x short
+    // at coarse intervals (docs/performance.md). Error both share (sweep's re-clips) is not seen.
+    const auto errorOf = [&](const RenderJob& j, const RenderResult& r) {
+        return measured(j) ? rmsDifference(pilot.image, r.image) : r.stats.clipped().estimated_error;
+    };
     RenderJob final_job = jobAt(spacingForTarget(pilot_interval, estimate, target));
     RenderResult result = renderClipped(final_job, frame, callbacks);
     ++renders;
-    // One correction where the model missed by more than 4/3: the order measured between the pilot and
-    // this render (kept within [1, 3]) carries this render's estimate to the target.
-    const double reached = result.stats.clipped().estimated_error;
-    const double interval = intervalOf(final_job);
-    if (reached > 0.0 && estimate > 0.0 && (reached > target * 4.0 / 3.0 || reached < target * 0.75) &&
-        std::abs(std::log(interval / pilot_interval)) > 1e-6) {
+    double reached = errorOf(final_job, result);
+    // Corrections where the model missed by more than 4/3: the order measured between the pilot and this
+    // render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
+    // than the pilot (renders are dear there), two where it is measured against it (they are cheap).
+    for (int k = 0; k < (measured(final_job) ? 2 : 1); ++k) {
+        const double interval = intervalOf(final_job);
+        if (!(reached > 0.0 && estimate > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
+            std::abs(std::log(interval / pilot_interval)) <= 1e-6)
+            break;
         const double order = std::clamp(std::log(reached / estimate) / std::log(interval / pilot_interval), 1.0, 3.0);
         const RenderJob corrected = jobAt(interval * std::pow(target / reached, 1.0 / order));
-        if (intervalOf(corrected) != interval) {
-            final_job = corrected;
-            result = renderClipped(final_job, frame, callbacks);
-            ++renders;
-        }
+        if (intervalOf(corrected) == interval) break;
+        final_job = corrected;
+        result = renderClipped(final_job, frame, callbacks);
+        ++renders;
+        reached = errorOf(final_job, result);
     }
     ClippedStats& stats = std::get<ClippedStats>(result.stats.method);
     stats.target = ErrorTargetStats{.error_target = job.render.error_target,
@@ -88,7 +119,9 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
                                     .pilot_seconds = pilot_seconds,
                                     .renders = renders,
                                     .sweep_spacing = sweep ? final_job.render.sweep_spacing : 0.0,
-                                    .subframes = sweep ? 0 : final_job.render.subframes};
+                                    .subframes = sweep ? 0 : final_job.render.subframes,
+                                    .reached_error = reached,
+                                    .against_pilot = measured(final_job)};
     return result;
 }
 

@@ -13,11 +13,16 @@ namespace clipblur {
 // a pixel's value nearly a step (h). Where the pilot estimates 0 (fewer than 3 samples), the pilot is
 // refined 4x, at most twice, before its setting is kept. Where the render's own estimate then misses the
 // target by more than 4/3, the order measured between pilot and render corrects it once (one more
-// render). The re-clip error of sweep is not targeted.
+// render). A render at an interval at least 1.5x the pilot's is judged instead by its RMS difference from
+// the pilot image (the pilot is the finer solution) and corrected up to twice. The re-clip error that
+// sweep's pilot and render share is not targeted.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval
 // between samples: pixels of sweep spacing, or 1 / subframes), by the model above.
 double spacingForTarget(double setting, double estimate, double target);
+
+// RMS over R, G and B of `image` minus `fine` over image's window (fine's window must hold it).
+double rmsDifference(const Image& fine, const Image& image);
 
 }  // namespace clipblur
