@@ -68,6 +68,12 @@ struct RenderSettings {
     FragmentShading fragment_shading = FragmentShading::Integral;
     int visibility_rays = 2;   // Embree candidate rays per pixel side (n x n per pixel)
     bool shadows = false;
+
+    // Whether any segment may be integrated by sweep: `sweep`, or `auto` without a fixed subframe count
+    // (which means point subframes).
+    bool maySweep() const {
+        return time_integration == TimeIntegration::Sweep || (time_integration == TimeIntegration::Auto && subframes == 0);
+    }
     std::uint64_t seed = 0;
     int tile_size = 32;
     // Check every resolved tile's fragments (inside the pixel, disjoint, covering exactly what the inputs

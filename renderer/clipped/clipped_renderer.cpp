@@ -368,7 +368,7 @@ void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, Segmen
         stats.auto_cost_points += cost.points;
         stats.auto_cost_sweep += cost.sweep;
     } else {
-        plan.sweep = settings.time_integration == TimeIntegration::Sweep || (automatic && seg.subframes == 0);
+        plan.sweep = settings.maySweep();
         options.sweep = plan.sweep;
         plan.motion = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
         if (plan.sweep) plan.positions = positionsOf(ctx, seg, plan, plan.motion);
@@ -754,7 +754,6 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     const std::vector<ShutterSegment> segments = shutterSegmentsOf(ctx, stats, result.stats.warnings);
     WindowSums sums(ctx.window.area(), job.output.cryptomatte.enabled);
     renderSegments(ctx, segments, sums, totals);
-    stats.sweep = stats.segments_sweep > 0;
     stats.estimated_error = estimateTimeError(sums.levels);
     FrameFragmentStats mid_stats;
     std::optional<EmbreeScene> whole;  // the mid-shutter depth sees the backdrop too

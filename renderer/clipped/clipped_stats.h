@@ -37,7 +37,6 @@ struct ClippedStats {
         double frame_fragments = 0.0, motion_plan = 0.0, tiles = 0.0;  // the parts of `segments`
     } seconds;
     bool both_frames = true;  // false: render.method frame0_only
-    bool sweep = false;       // some segment was integrated by sweep
     bool auto_integration = false;  // render.time_integration auto
     bool ode = false;         // render.path_method euler or rk4
     long long tiles = 0, triangles = 0, segments = 0, frame_sets = 0, guard_band_pixels = 0;
@@ -92,7 +91,7 @@ struct ClippedStats {
         f.count("reclip_fragments", reclip.fragments);
         f.count("reclip_mixed_fragments", reclip.mixed);
         f.count("reclip_shaded_pieces", reclip.shaded_pieces);
-        if (sweep) {
+        if (segments_sweep > 0) {
             f.count("sweep_positions", reclip.sweep_positions);
             f.count("sweep_unswept_fragments", reclip.sweep_unswept);
             f.count("sweep_spilled_pixels", sweep_spilled_pixels);

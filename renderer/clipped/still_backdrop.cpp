@@ -41,10 +41,7 @@ double farthestDepth(const FrameMotion& motion, std::size_t o, const CameraFrame
 
 Backdrop findBackdrop(const RenderJob& job, const FrameMotion& motion) {
     const Scene& scene = job.scene;
-    // Under auto a fixed subframe count means point subframes (chooseIntegration).
-    const bool may_sweep = job.render.time_integration == TimeIntegration::Sweep ||
-                           (job.render.time_integration == TimeIntegration::Auto && job.render.subframes == 0);
-    if (!may_sweep || job.render.shadows ||
+    if (!job.render.maySweep() || job.render.shadows ||
         job.render.method != Method::Clipped || !motion.shutter().camera_still)
         return {};
     Backdrop backdrop;
