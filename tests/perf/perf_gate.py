@@ -3,8 +3,8 @@
 
 Renders tests/perf/gate_scene.yaml with the clipped method (point subframes and sweep integration)
 and with a stochastic baseline, alternating, several times, then each many-object bench scene
-(configs/bench/many/, made after the tuning) once with sweep integration and automatic re-clips, and
-checks against tests/perf/thresholds.json:
+(configs/bench/many/, made after the tuning) once with sweep integration and automatic re-clips and
+once with the default `time_integration: auto`, and checks against tests/perf/thresholds.json:
   - the RATIOS min(clipped CPU seconds) / min(stochastic CPU seconds) and the same for sweep. CPU
     seconds are the render's own (stats `seconds.cpu`, getrusage around the frame, process start-up
     excluded), so a neighbour that competes for the cores stretches wall clock but hardly moves them.
@@ -64,11 +64,16 @@ EXACT_COUNTS = {
 MANY_SCENES = ["particles", "street", "deforming", "building_dolly"]
 MANY_COUNTS = ["segments", "frame_sets", "subframes_total", "subframes_max_per_tile", "capped_tiles",
                "reclip_fragments", "sweep_positions", "sweep_spilled_pixels", "sweep_unswept_fragments"]
+# The same scenes under the default `time_integration: auto`, gated under "many-auto/<name>": which
+# method each segment takes is a count too, so a cost-model change that flips a choice shows here.
+AUTO_COUNTS = MANY_COUNTS + ["segments_points", "segments_sweep"]
 # What each gate method renders, on top of the scene's own settings.
 # Point subframes explicitly: the default time_integration is auto, which sweeps the gate scene.
 METHOD_SETTINGS = {"clipped": ["render.method=clipped", "render.time_integration=subframes"],
                    "sweep": ["render.method=clipped", "render.time_integration=sweep"],
                    "stochastic": ["render.method=stochastic"]}
+# How the many-object scenes are rendered: not part of the timed alternation above.
+MANY_METHODS = {"sweep": METHOD_SETTINGS["sweep"], "auto": ["render.method=clipped"]}
 
 # The committed ratio limit is the measured ratio times this. Below 1.5, so that a 1.5x slowdown of
 # the clipped code fails; above the spread of CPU-second ratios between runs under load (docs/performance.md).
@@ -83,14 +88,14 @@ class GateError(RuntimeError):
     pass
 
 
-def render(clipblur, method, mode, workdir, index, threads, cpu, scene=SCENE):
+def render(clipblur, method, mode, workdir, index, threads, cpu, scene=SCENE, settings=None):
     m = MODES[mode]
     image = Path(workdir) / f"{scene.stem}_{method}_{index}.exr"
     stats = image.with_suffix(".stats.json")
     cmd = [clipblur, "render", str(scene), "--out", str(image), "--stats", str(stats), "--progress", "none",
            "--threads", str(threads), "--set", f"film.width={m['width']}",
            "--set", f"film.height={m['height']}", "--set", f"render.samples={m['samples']}"]
-    for setting in METHOD_SETTINGS[method]:
+    for setting in settings if settings is not None else METHOD_SETTINGS[method]:
         cmd += ["--set", setting]
     r = subprocess.run(cmd, capture_output=True, text=True,
                        preexec_fn=(lambda: os.sched_setaffinity(0, {cpu})) if cpu is not None else None)
@@ -120,13 +125,24 @@ def measure(clipblur, mode, threads, counts_only=False):
                     raise GateError(f"{method} counts differ between repeats: {counts[method]} vs {c}")
                 counts[method] = c
         for name in MANY_SCENES:
-            s = render(clipblur, "sweep", mode, workdir, 0, threads, cpu, REPO / "configs/bench/many" / f"{name}.yaml")
-            counts[f"many/{name}"] = {k: s["counts"].get(k) for k in MANY_COUNTS}
-            seconds[f"many/{name}"] = [s["seconds"]["cpu"]]
+            scene = REPO / "configs/bench/many" / f"{name}.yaml"
+            for method, settings in MANY_METHODS.items():
+                s = render(clipblur, method, mode, workdir, 0, threads, cpu, scene, settings)
+                key = many_key(method, name)
+                counts[key] = {k: s["counts"].get(k) for k in many_counts(method)}
+                seconds[key] = [s["seconds"]["cpu"]]
     least = {m: min(v) for m, v in seconds.items()}
     return {"cpu_seconds": seconds, "min_cpu_seconds": least, "pinned_cpu": cpu,
             "ratio": least["clipped"] / least["stochastic"],
             "ratio_sweep": least["sweep"] / least["stochastic"], "counts": counts}
+
+
+def many_key(method, name):
+    return f"many/{name}" if method == "sweep" else f"many-{method}/{name}"
+
+
+def many_counts(method):
+    return MANY_COUNTS if method == "sweep" else AUTO_COUNTS
 
 
 def cpu_model():
@@ -156,7 +172,7 @@ def timing_limits(expected, model):
 
 def check(result, expected, counts_only, model):
     failures = []
-    gated = dict(EXACT_COUNTS, **{f"many/{name}": MANY_COUNTS for name in MANY_SCENES})
+    gated = dict(EXACT_COUNTS, **{many_key(m, n): many_counts(m) for m in MANY_METHODS for n in MANY_SCENES})
     for method, keys in gated.items():
         want = expected.get("counts", {}).get(method, {})
         got = result["counts"][method]
@@ -208,8 +224,9 @@ def main():
         print(f"perf gate ({args.mode}, {model}, renders on CPU {result['pinned_cpu']}): least CPU seconds of {len(result['cpu_seconds']['clipped'])}: clipped "
               f"{least['clipped']:.4f}, sweep {least['sweep']:.4f}, stochastic {least['stochastic']:.4f}; "
               f"ratios {result['ratio']:.3f} and {result['ratio_sweep']:.3f}")
-        print("perf gate: many-object scenes, sweep, CPU seconds: " +
-              ", ".join(f"{n} {least['many/' + n]:.3f}" for n in MANY_SCENES))
+        for m in MANY_METHODS:
+            print(f"perf gate: many-object scenes, {m}, CPU seconds: " +
+                  ", ".join(f"{n} {least[many_key(m, n)]:.3f}" for n in MANY_SCENES))
 
         path = Path(args.thresholds)
         table = json.loads(path.read_text()) if path.is_file() else {}
