@@ -19,6 +19,10 @@ disocclusion scene, at 1280x720):
      it and stochastic at e256;
   4. each variant's time at e256, interpolated in log-log along its ladder, and the ratio
      (the peer's time at e256) / (that time), beside the ratio to stochastic; the goal is at least 5;
+     and the headline of issue 21: the ladders go on until they reach e1024 = e256 / 2, the error of
+     1024-spp ray casting, and the whole `clipblur render` process's wall clock (start-up and image
+     writing included) is interpolated to e256 and e1024 and set against the peer's time there (its
+     time at e256, times 4 at e1024); the goals are 10 and 30;
   5. with --threads-check on: each variant's rung that reaches e256 (or `auto`) and stochastic 256 spp
      at 1 and at 2 threads, the clipped ones --thread-repeats times alternating (the fastest of each
      counts); the speed-up t1 / t2 (goal for clipped: at least 1.8), and whether all the images are
@@ -83,7 +87,12 @@ METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "
 DEFAULT_SEEDS = (1001, 2002)
 LOOP_SEED = 3003  # the plain loop's own stream, independent of the pair's
 
-CSV_FIELDS = ["scene", "role", "method", "param", "seed", "threads", "seconds", "subframes_total",
+# The peer's sample counts whose errors the clipped ladders must reach (issue 21): e_N = e256 sqrt(256 / N),
+# at the peer's time at e256 times N / 256 (error ~ 1/sqrt(samples)).
+LEVELS = (256, 1024)
+LEVEL_GOALS = {256: 10.0, 1024: 30.0}
+
+CSV_FIELDS = ["scene", "role", "method", "param", "seed", "threads", "seconds", "wall_seconds", "subframes_total",
               "subframes_max_per_tile", "reclip_fragments", "fragments_per_subframe", "peak_memory_mb",
               "error", "error_se", "within_noise", "identical_across_threads", "width", "height", "image"]
 
@@ -138,6 +147,7 @@ def row(scene, role, method, param, seed, threads, stats, args, image, error="",
     per_subframe = fragments / sub_total if isinstance(sub_total, int) and sub_total > 0 and fragments != "" else ""
     return {"scene": scene, "role": role, "method": method, "param": param, "seed": seed,
             "threads": stats.get("threads", threads), "seconds": stats["seconds"]["total"],
+            "wall_seconds": stats["process_wall_seconds"],
             "subframes_total": sub_total, "subframes_max_per_tile": counts.get("subframes_max_per_tile", ""),
             "reclip_fragments": fragments, "fragments_per_subframe": per_subframe,
             "peak_memory_mb": stats.get("peak_memory_bytes", 0) / 2 ** 20, "error": error, "error_se": error_se,
@@ -190,6 +200,7 @@ def measure_scene(clipblur, scene, args, out, log=print):
         n *= 2
     result = {"scene": scene, "t_stochastic": t_stochastic, "e256": pair.e256, "e256_sq_se": pair.e256_sq_se,
               "t_loop": t_loop, "e_loop": e_loop, "t_loop_e256": t_loop_e256, "peer": peer, "t_peer": t_peer}
+    e_finest = level_error(pair.e256, max(LEVELS))
     for method in args.methods:
         overrides = METHODS[method]
 
@@ -206,14 +217,18 @@ def measure_scene(clipblur, scene, args, out, log=print):
             return e
 
         reaching = None
+        finest = None  # the first rung at the finest level's error
         for rung in rungs + (["auto"] if args.auto == "on" else []):
-            if rung != "auto" and reaching is not None:
+            if rung != "auto" and finest is not None:
                 continue
             # The sweep ladders stop where the spacing would fall below what a job may ask for.
             if rung != "auto" and float(overrides(rung).get("render.sweep_spacing", SWEEP_SPACING_MIN)) < SWEEP_SPACING_MIN:
                 continue
-            if run(rung) <= pair.e256 and rung != "auto":
+            e = run(rung)
+            if rung != "auto" and e <= pair.e256 and reaching is None:
                 reaching = rung
+            if rung != "auto" and e <= e_finest:
+                finest = rung
         # A first rung already at e256 only bounds the time from above; positions can also be coarser
         # than the first rung's (16, 32, 64 px apart), so go down until a rung is above e256 and the time
         # is interpolated between two rungs like every other scene's.
@@ -224,10 +239,13 @@ def measure_scene(clipblur, scene, args, out, log=print):
                 rung /= 2
         ladder = [rw for rw in rows if rw["role"] == method]
         t = benchlib.time_to_reach([(rw["seconds"], rw["error"]) for rw in ladder], pair.e256)
+        walls = {n: benchlib.time_to_reach([(rw["wall_seconds"], rw["error"]) for rw in ladder],
+                                           level_error(pair.e256, n)) for n in LEVELS}
         result[method] = {"t": t, "ratio": t_peer / t if t else None,
                           "ratio_stochastic": t_stochastic / t if t else None, "reaching": reaching,
                           "best_error": min(rw["error"] for rw in ladder),
-                          "auto": next((rw for rw in ladder if rw["param"] == "auto"), None)}
+                          "auto": next((rw for rw in ladder if rw["param"] == "auto"), None),
+                          "wall": {n: {"t": w, "ratio": t_peer * n / SPP / w if w else None} for n, w in walls.items()}}
 
     if args.threads_check == "on":
         checks = [(m, METHODS[m], result[m]["reaching"] or "auto") for m in args.methods]
@@ -261,8 +279,36 @@ def measure_scene(clipblur, scene, args, out, log=print):
     return rows, result
 
 
+def level_error(e256, spp):
+    return e256 * math.sqrt(SPP / spp)
+
+
 def fmt(x, spec=".3f"):
     return "-" if x is None or x == "" else format(x, spec)
+
+
+def headline(results):
+    """The table docs/performance.md opens with: per scene and ladder, the peer's time at its 256- and
+    1024-spp errors, clipblur's whole-process wall clock to the same errors, and the ratios."""
+    head = "| scene | ladder | peer |"
+    rule = "|---|---|---|"
+    for n in LEVELS:
+        head += f" e{n} | peer s | clipblur wall s | ratio (goal {LEVEL_GOALS[n]:g}) |"
+        rule += "---|---|---|---|"
+    lines = [head, rule]
+    for r in results:
+        for method in METHODS:
+            m = r.get(method)
+            if not m:
+                continue
+            cells = f"| {r['scene']} | {method} | {r['peer']} |"
+            for n in LEVELS:
+                w = m["wall"][n]
+                t_cell = f"{w['t']:.2f}" if w["t"] else f"not reached (best {m['best_error']:.3g})"
+                ratio = f"**{w['ratio']:.2f}**" if w["ratio"] and w["ratio"] >= LEVEL_GOALS[n] else fmt(w["ratio"], ".2f")
+                cells += f" {level_error(r['e256'], n):.3g} | {r['t_peer'] * n / SPP:.2f} | {t_cell} | {ratio} |"
+            lines.append(cells)
+    return "\n".join(lines) + "\n"
 
 
 def summarise(results, rows):
@@ -288,7 +334,9 @@ def summarise(results, rows):
             lines.append(f"| {r['scene']} | {method} | {r['t_stochastic']:.3f} | {r['e256']:.4g}{rel} | "
                          f"{r['t_loop_e256']:.3f} | {r['peer']} | {t_cell} | "
                          f"{ratio_cell} | {stochastic_cell} | {fmt(m['reaching'], '')} | {auto_cells} |")
-    text = "\n".join(lines) + "\n"
+    text = ("Headline (issue 21): whole-process wall clock against the peer's time scaled to its 256- and "
+            "1024-spp errors:\n\n" + headline(results) + "\nEvery ladder (stats seconds.total):\n\n"
+            + "\n".join(lines) + "\n")
 
     if any("stochastic_threads" in r for r in results):
         lines = [f"| scene | method | rung | 1 thread s | 2 threads s | speed-up (goal >= {THREAD_GOAL:g}) | "
