@@ -11,7 +11,6 @@
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "renderer/clipped/frame_fragments.h"
@@ -23,6 +22,7 @@
 #include "renderer/clipped/still_backdrop.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/clipped/time_error.h"
+#include "renderer/parallel_time.h"
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
 #include "renderer/visibility/embree_scene.h"
@@ -95,7 +95,7 @@ std::vector<glm::vec2> fragmentMotion(const FrameSetup& frame, const std::vector
     const Scene& scene = frame.scene();
     const MotionSnapshot open(scene, frame.projection, frame.motion.t0()), close(scene, frame.projection, frame.motion.t1());
     std::vector<glm::vec2> motion(triangles.size());
-    tbb::parallel_for(std::size_t(0), triangles.size(), [&](std::size_t i) {
+    parallelFor(std::size_t(0), triangles.size(), [&](std::size_t i) {
         const FragmentTriangle& t = triangles[i];
         const MeshPoint c{t.object, t.triangle, (t.bary[0] + t.bary[1] + t.bary[2]) / 3.0};
         const ProjectedPoint a = project(open, scene, c), b = project(close, scene, c);
@@ -536,7 +536,7 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     const std::vector<double> factors = curveFactors(seg, times, 2.0 * half, tilts);
     const TileReclip reclip{scene, ctx.frame.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
                             settings.audit};
-    tbb::parallel_for(0, n, [&](int k) {
+    parallelFor(0, n, [&](int k) {
         const double t = times[static_cast<std::size_t>(k)];
         const MotionSnapshot snapshot(scene, ctx.frame.projection, t);
         std::optional<MotionSnapshot> begin, end;
@@ -606,7 +606,7 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     // reads, and reclipSubframe starts no TBB work, so a thread never holds its scratch across a steal.
     tbb::enumerable_thread_specific<ReclipScratch> scratches;
     TileOutputs outputs{target, spills, scratches};
-    tbb::parallel_for(0, ctx.frame.grid.count(), [&](int index) {
+    parallelFor(0, ctx.frame.grid.count(), [&](int index) {
         if (ctx.frame.callbacks.cancel && ctx.frame.callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
             return;
@@ -725,6 +725,7 @@ void writeWindow(const ClippedContext& ctx, WindowSums& sums, const std::optiona
 
 RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     const auto start = Clock::now();
+    const ParallelLedger parallel;
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.render;
     const FrameMotion motion(scene, frame + job.shutter.open, frame + job.shutter.close);
@@ -777,6 +778,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     if (stats.capped_tiles > 0)
         result.stats.warnings.push_back(std::to_string(stats.capped_tiles) + " tiles needed more than max_subframes (" +
                                         std::to_string(settings.max_subframes) + "); motion there may strobe");
+    stats.seconds.serial = secondsSince(start) - parallel.seconds();
     result.stats.method = std::move(stats);
     return result;
 }

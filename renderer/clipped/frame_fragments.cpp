@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include "renderer/fragments/fragment_tile.h"
+#include "renderer/parallel_time.h"
 #include "renderer/shading/fragment_shading.h"
 #include "renderer/visibility/frame_geometry.h"
 #include "scene/error.h"
@@ -101,7 +101,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
         TileScratch tile;
     };
     tbb::enumerable_thread_specific<Scratch> scratches;
-    tbb::parallel_for(0, grid.count(), [&](int index) {
+    parallelFor(0, grid.count(), [&](int index) {
         if (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
             return;
