@@ -576,6 +576,25 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     return n;
 }
 
+// Adds the tiles' spills after all tiles, in tile order per pixel, so the sums do not depend on which
+// thread finished first. Bands of rows are independent: each takes, from every tile in order, the run of
+// its spills that lands in the band (collectSpills leaves a tile's spills in row-major order). Then frees
+// them, in parallel too: tens of MB, each spill's object shares visited.
+void addSpills(std::vector<std::vector<Spill>>& spills, const PixelBounds& window, int band_rows, WindowSums& target) {
+    const std::size_t band = static_cast<std::size_t>(band_rows) * static_cast<std::size_t>(window.width());
+    if (band == 0) return;  // an empty window
+    const auto bands = static_cast<int>((window.area() + band - 1) / band);
+    parallelFor(0, bands, [&](int b) {
+        const std::size_t begin = static_cast<std::size_t>(b) * band, end = begin + band;
+        for (const auto& tile_spills : spills) {
+            auto s = std::lower_bound(tile_spills.begin(), tile_spills.end(), begin,
+                                      [](const Spill& spill, std::size_t i) { return spill.out < i; });
+            for (; s != tile_spills.end() && s->out < end; ++s) target.add(s->out, 1.0, *s);
+        }
+    });
+    parallelFor(std::size_t(0), spills.size(), [&](std::size_t t) { std::vector<Spill>().swap(spills[t]); });
+}
+
 // The paper's method over one shutter segment: fragment sets at both ends, per-tile re-clips,
 // integration of each tile, then the merge in tile order; adds weight x (the segment's average) to `sums`.
 void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums& sums, SegmentTotals& totals) {
@@ -623,13 +642,8 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
         const long long done = ++tiles_done + static_cast<long long>(seg.index) * ctx.frame.grid.count();
         if (ctx.frame.callbacks.progress) ctx.frame.callbacks.progress(done, progress_total);
     });
-    // Spills after all tiles, in tile order, so the sums do not depend on which thread finished first.
-    for (const auto& tile_spills : spills) {
-        for (const Spill& s : tile_spills) {
-            target.add(s.out, 1.0, s);
-            ++totals.stats.sweep_spilled_pixels;
-        }
-    }
+    for (const auto& tile_spills : spills) totals.stats.sweep_spilled_pixels += static_cast<long long>(tile_spills.size());
+    addSpills(spills, ctx.window, ctx.frame.grid.tileSize(), target);
     if (front)
         compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.weight}, sums);
     totals.stats.seconds.tiles += secondsSince(stage);
