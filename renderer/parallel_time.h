@@ -3,6 +3,7 @@
 #include <utility>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
 #include "renderer/stopwatch.h"
@@ -52,10 +53,14 @@ private:
     int depth_ = 0;
 };
 
-// tbb::parallel_for and tbb::parallel_reduce, timed on the render's ledger.
+// tbb::parallel_for, tbb::parallel_invoke and tbb::parallel_reduce, timed on the render's ledger.
 template <class... Args>
 void parallelFor(Args&&... args) {
     ParallelLedger::time([&] { tbb::parallel_for(std::forward<Args>(args)...); });
+}
+template <class... Args>
+void parallelInvoke(Args&&... args) {
+    ParallelLedger::time([&] { tbb::parallel_invoke(std::forward<Args>(args)...); });
 }
 template <class... Args>
 auto parallelReduce(Args&&... args) {

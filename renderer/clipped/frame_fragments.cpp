@@ -13,11 +13,10 @@
 
 namespace clipblur {
 
+// Each array first touched (page faults) on a task of its own.
 void PixelSums::resize(std::size_t pixels, bool with_objects) {
-    colour.assign(pixels, glm::dvec3(0.0));
-    covered.assign(pixels, 0.0);
-    depth.assign(pixels, 0.0);
-    objects.assign(with_objects ? pixels : 0, {});
+    parallelInvoke([&] { colour.assign(pixels, glm::dvec3(0.0)); }, [&] { covered.assign(pixels, 0.0); },
+                   [&] { depth.assign(pixels, 0.0); }, [&] { objects.assign(with_objects ? pixels : 0, {}); });
 }
 
 namespace {
