@@ -201,7 +201,7 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
     const PixelSums& backdrop = layers.backdrop;
     const double weight = layers.weight;
     const int size = grid.tileSize();
-    for (int y = window.y0; y < window.y1; ++y) {
+    parallelFor(window.y0, window.y1, [&](int y) {  // each pixel on its own
         for (int x = window.x0; x < window.x1; ++x) {
             const std::size_t i = window.index(x, y);
             sums.addPixel(i, front);
@@ -211,7 +211,7 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
             sums.addStill(i, seen, backdrop, p);
             if (seen > 0.0 && seen < weight) sums.levels[i] += behindFront(front.levels[i], backdrop, p);
         }
-    }
+    });
 }
 
 // What carries from one shutter segment to the next: the frame's stats, the backdrop image and the set
@@ -724,7 +724,7 @@ void writeWindow(const ClippedContext& ctx, WindowSums& sums, const std::optiona
     const Scene& scene = ctx.job.scene;
     result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(ctx.job.output));
     ImageWriter writer(result.image);
-    for (int y = ctx.window.y0; y < ctx.window.y1; ++y) {
+    parallelFor(ctx.window.y0, ctx.window.y1, [&](int y) {  // each pixel on its own
         for (int x = ctx.window.x0; x < ctx.window.x1; ++x) {
             const std::size_t i = ctx.window.index(x, y);
             const std::size_t p = scene.film.pixels().index(x, y);
@@ -734,7 +734,7 @@ void writeWindow(const ClippedContext& ctx, WindowSums& sums, const std::optiona
             const double scale = overCoverScale(sums.covered[i]);
             for (ObjectShare& o : sums.objects[i]) o.coverage *= scale;
         }
-    }
+    });
     result.objects.pixels = std::move(sums.objects);  // window-local row-major, as the image
 }
 
