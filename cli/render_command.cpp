@@ -28,6 +28,7 @@
 #include "io/stats_writer.h"
 #include "renderer/image_module.h"
 #include "renderer/render.h"
+#include "renderer/worker_threads.h"
 #include "scene/error.h"
 
 namespace clipblur::cli {
@@ -284,11 +285,12 @@ Action addRenderCommand(CLI::App& app) {
         // Every path is resolved and checked before rendering so a bad one fails before any work is done.
         const std::vector<FrameFiles> frames = planFrames(job, *opts, shard);
         checkFrameFiles(frames, read);
-        // Images are written by the image module (OpenImageIO): it loads while the frames render.
-        preloadImageModule();
-
         std::optional<tbb::global_control> limit;
         if (opts->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, opts->threads);
+        // Images are written by the image module (OpenImageIO): it loads while the frames render, once
+        // TBB's libraries and threads are up.
+        startWorkerThreads();
+        preloadImageModule();
         const int threads =
             static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
         const ProgressStyle style = parseProgress(opts->progress);

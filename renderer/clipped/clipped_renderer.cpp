@@ -11,7 +11,6 @@
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "renderer/clipped/frame_fragments.h"
@@ -23,6 +22,7 @@
 #include "renderer/clipped/still_backdrop.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/clipped/time_error.h"
+#include "renderer/parallel_time.h"
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
 #include "renderer/visibility/embree_scene.h"
@@ -95,7 +95,7 @@ std::vector<glm::vec2> fragmentMotion(const FrameSetup& frame, const std::vector
     const Scene& scene = frame.scene();
     const MotionSnapshot open(scene, frame.projection, frame.motion.t0()), close(scene, frame.projection, frame.motion.t1());
     std::vector<glm::vec2> motion(triangles.size());
-    tbb::parallel_for(std::size_t(0), triangles.size(), [&](std::size_t i) {
+    parallelFor(std::size_t(0), triangles.size(), [&](std::size_t i) {
         const FragmentTriangle& t = triangles[i];
         const MeshPoint c{t.object, t.triangle, (t.bary[0] + t.bary[1] + t.bary[2]) / 3.0};
         const ProjectedPoint a = project(open, scene, c), b = project(close, scene, c);
@@ -131,9 +131,12 @@ struct WindowSums {
     std::vector<ObjectShares> objects;  // per object its share of `covered`; empty unless ID mattes are asked for
     std::vector<LevelDifference> levels;  // per pixel, for estimateTimeError
 
-    WindowSums(std::size_t pixels, bool with_objects)
-        : colour(pixels), covered(pixels), depth(pixels), motion(pixels), objects(with_objects ? pixels : 0),
-          levels(pixels, LevelDifference(0.0f)) {}
+    // About 70 bytes a pixel, first touched (page faults) on a task per array.
+    WindowSums(std::size_t pixels, bool with_objects) {
+        parallelInvoke([&] { colour.resize(pixels); }, [&] { covered.resize(pixels); }, [&] { depth.resize(pixels); },
+                       [&] { motion.resize(pixels); }, [&] { objects.resize(with_objects ? pixels : 0); },
+                       [&] { levels.assign(pixels, LevelDifference(0.0f)); });
+    }
 
     // Adds scale x one pixel's sums to pixel i, with its per-object areas when they are tracked.
     void add(std::size_t i, double scale, const Spill& s) {
@@ -198,7 +201,7 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
     const PixelSums& backdrop = layers.backdrop;
     const double weight = layers.weight;
     const int size = grid.tileSize();
-    for (int y = window.y0; y < window.y1; ++y) {
+    parallelFor(window.y0, window.y1, [&](int y) {  // each pixel on its own
         for (int x = window.x0; x < window.x1; ++x) {
             const std::size_t i = window.index(x, y);
             sums.addPixel(i, front);
@@ -208,7 +211,7 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
             sums.addStill(i, seen, backdrop, p);
             if (seen > 0.0 && seen < weight) sums.levels[i] += behindFront(front.levels[i], backdrop, p);
         }
-    }
+    });
 }
 
 // What carries from one shutter segment to the next: the frame's stats, the backdrop image and the set
@@ -536,7 +539,7 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     const std::vector<double> factors = curveFactors(seg, times, 2.0 * half, tilts);
     const TileReclip reclip{scene, ctx.frame.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
                             settings.audit};
-    tbb::parallel_for(0, n, [&](int k) {
+    parallelFor(0, n, [&](int k) {
         const double t = times[static_cast<std::size_t>(k)];
         const MotionSnapshot snapshot(scene, ctx.frame.projection, t);
         std::optional<MotionSnapshot> begin, end;
@@ -576,6 +579,25 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     return n;
 }
 
+// Adds the tiles' spills after all tiles, in tile order per pixel, so the sums do not depend on which
+// thread finished first. Bands of rows are independent: each takes, from every tile in order, the run of
+// its spills that lands in the band (collectSpills leaves a tile's spills in row-major order). Then frees
+// them, in parallel too: tens of MB, each spill's object shares visited.
+void addSpills(std::vector<std::vector<Spill>>& spills, const PixelBounds& window, int band_rows, WindowSums& target) {
+    const std::size_t band = static_cast<std::size_t>(band_rows) * static_cast<std::size_t>(window.width());
+    if (band == 0) return;  // an empty window
+    const auto bands = static_cast<int>((window.area() + band - 1) / band);
+    parallelFor(0, bands, [&](int b) {
+        const std::size_t begin = static_cast<std::size_t>(b) * band, end = begin + band;
+        for (const auto& tile_spills : spills) {
+            auto s = std::lower_bound(tile_spills.begin(), tile_spills.end(), begin,
+                                      [](const Spill& spill, std::size_t i) { return spill.out < i; });
+            for (; s != tile_spills.end() && s->out < end; ++s) target.add(s->out, 1.0, *s);
+        }
+    });
+    parallelFor(std::size_t(0), spills.size(), [&](std::size_t t) { std::vector<Spill>().swap(spills[t]); });
+}
+
 // The paper's method over one shutter segment: fragment sets at both ends, per-tile re-clips,
 // integration of each tile, then the merge in tile order; adds weight x (the segment's average) to `sums`.
 void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums& sums, SegmentTotals& totals) {
@@ -606,7 +628,7 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     // reads, and reclipSubframe starts no TBB work, so a thread never holds its scratch across a steal.
     tbb::enumerable_thread_specific<ReclipScratch> scratches;
     TileOutputs outputs{target, spills, scratches};
-    tbb::parallel_for(0, ctx.frame.grid.count(), [&](int index) {
+    parallelFor(0, ctx.frame.grid.count(), [&](int index) {
         if (ctx.frame.callbacks.cancel && ctx.frame.callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
             return;
@@ -623,13 +645,8 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
         const long long done = ++tiles_done + static_cast<long long>(seg.index) * ctx.frame.grid.count();
         if (ctx.frame.callbacks.progress) ctx.frame.callbacks.progress(done, progress_total);
     });
-    // Spills after all tiles, in tile order, so the sums do not depend on which thread finished first.
-    for (const auto& tile_spills : spills) {
-        for (const Spill& s : tile_spills) {
-            target.add(s.out, 1.0, s);
-            ++totals.stats.sweep_spilled_pixels;
-        }
-    }
+    for (const auto& tile_spills : spills) totals.stats.sweep_spilled_pixels += static_cast<long long>(tile_spills.size());
+    addSpills(spills, ctx.window, ctx.frame.grid.tileSize(), target);
     if (front)
         compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.weight}, sums);
     totals.stats.seconds.tiles += secondsSince(stage);
@@ -707,7 +724,7 @@ void writeWindow(const ClippedContext& ctx, WindowSums& sums, const std::optiona
     const Scene& scene = ctx.job.scene;
     result.image = Image::make(scene.film.width, scene.film.height, ctx.window, outputChannels(ctx.job.output));
     ImageWriter writer(result.image);
-    for (int y = ctx.window.y0; y < ctx.window.y1; ++y) {
+    parallelFor(ctx.window.y0, ctx.window.y1, [&](int y) {  // each pixel on its own
         for (int x = ctx.window.x0; x < ctx.window.x1; ++x) {
             const std::size_t i = ctx.window.index(x, y);
             const std::size_t p = scene.film.pixels().index(x, y);
@@ -717,7 +734,7 @@ void writeWindow(const ClippedContext& ctx, WindowSums& sums, const std::optiona
             const double scale = overCoverScale(sums.covered[i]);
             for (ObjectShare& o : sums.objects[i]) o.coverage *= scale;
         }
-    }
+    });
     result.objects.pixels = std::move(sums.objects);  // window-local row-major, as the image
 }
 
@@ -725,6 +742,7 @@ void writeWindow(const ClippedContext& ctx, WindowSums& sums, const std::optiona
 
 RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     const auto start = Clock::now();
+    const ParallelLedger parallel;
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.render;
     const FrameMotion motion(scene, frame + job.shutter.open, frame + job.shutter.close);
@@ -777,6 +795,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     if (stats.capped_tiles > 0)
         result.stats.warnings.push_back(std::to_string(stats.capped_tiles) + " tiles needed more than max_subframes (" +
                                         std::to_string(settings.max_subframes) + "); motion there may strobe");
+    stats.seconds.serial = secondsSince(start) - parallel.seconds();
     result.stats.method = std::move(stats);
     return result;
 }

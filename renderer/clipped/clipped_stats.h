@@ -35,6 +35,8 @@ struct ClippedStats {
     struct Seconds {
         double scene_build = 0.0, hidden_probe = 0.0, segments = 0.0;
         double frame_fragments = 0.0, motion_plan = 0.0, tiles = 0.0;  // the parts of `segments`
+        // The render's thread outside its parallel loops (ParallelLedger): what more threads cannot shorten.
+        double serial = 0.0;
     } seconds;
     bool both_frames = true;  // false: render.method frame0_only
     bool auto_integration = false;  // render.time_integration auto
@@ -66,6 +68,7 @@ struct ClippedStats {
         f.seconds("frame_fragments", seconds.frame_fragments);
         f.seconds("motion_plan", seconds.motion_plan);
         f.seconds("tiles", seconds.tiles);
+        f.seconds("serial", seconds.serial);
         f.count("tiles", tiles);
         f.count("triangles", triangles);
         f.count("segments", segments);

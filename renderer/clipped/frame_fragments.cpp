@@ -4,20 +4,19 @@
 #include <cmath>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include "renderer/fragments/fragment_tile.h"
+#include "renderer/parallel_time.h"
 #include "renderer/shading/fragment_shading.h"
 #include "renderer/visibility/frame_geometry.h"
 #include "scene/error.h"
 
 namespace clipblur {
 
+// Each array first touched (page faults) on a task of its own.
 void PixelSums::resize(std::size_t pixels, bool with_objects) {
-    colour.assign(pixels, glm::dvec3(0.0));
-    covered.assign(pixels, 0.0);
-    depth.assign(pixels, 0.0);
-    objects.assign(with_objects ? pixels : 0, {});
+    parallelInvoke([&] { colour.assign(pixels, glm::dvec3(0.0)); }, [&] { covered.assign(pixels, 0.0); },
+                   [&] { depth.assign(pixels, 0.0); }, [&] { objects.assign(with_objects ? pixels : 0, {}); });
 }
 
 namespace {
@@ -101,7 +100,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
         TileScratch tile;
     };
     tbb::enumerable_thread_specific<Scratch> scratches;
-    tbb::parallel_for(0, grid.count(), [&](int index) {
+    parallelFor(0, grid.count(), [&](int index) {
         if (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed)) {
             cancelled = true;
             return;

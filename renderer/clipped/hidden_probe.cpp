@@ -3,8 +3,7 @@
 #include <array>
 #include <vector>
 
-#include <tbb/parallel_for.h>
-
+#include "renderer/parallel_time.h"
 #include "renderer/propagation/surface_path.h"
 
 namespace clipblur {
@@ -36,7 +35,7 @@ HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, d
     const int columns = (scene.film.width - ox + kProbeStride - 1) / kProbeStride;
     const int rows = (scene.film.height - oy + kProbeStride - 1) / kProbeStride;
     std::vector<HiddenProbe> per_row(static_cast<std::size_t>(std::max(rows, 0)));
-    tbb::parallel_for(0, rows, [&](int r) {
+    parallelFor(0, rows, [&](int r) {
         HiddenProbe& row = per_row[static_cast<std::size_t>(r)];
         const double y = r * kProbeStride + oy + 0.5;
         for (int c = 0; c < columns; ++c) {

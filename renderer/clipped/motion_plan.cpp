@@ -6,9 +6,8 @@
 #include <limits>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
+#include "renderer/parallel_time.h"
 #include "scene/object_motion.h"
 
 namespace clipblur {
@@ -128,7 +127,7 @@ FragmentPaths measurePaths(const FrameSetup& frame, const MotionWindow& window, 
         auto& area = paths.area[static_cast<std::size_t>(layer)];
         m.resize(triangles->size());
         area.resize(triangles->size());
-        tbb::parallel_for(std::size_t(0), triangles->size(), [&](std::size_t i) {
+        parallelFor(std::size_t(0), triangles->size(), [&](std::size_t i) {
             const FragmentTriangle& t = (*triangles)[i];
             const std::array<MeshPoint, 3> points{MeshPoint{t.object, t.triangle, t.bary[0]},
                                                   MeshPoint{t.object, t.triangle, t.bary[1]},
@@ -198,7 +197,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
     // surface cut into many objects that move together has none, as one object has none with itself.
     plan.groups = frame.motion.groups(window);
     const auto motionGroup = [&](const FragmentRef& ref) { return plan.groups[object(ref)]; };
-    tbb::parallel_for(0, count, [&](int index) {
+    parallelFor(0, count, [&](int index) {
         auto& refs = plan.refs[static_cast<std::size_t>(index)];
         if (sweep && !backdrop.empty())
             plan.backdrop[static_cast<std::size_t>(index)] =
@@ -286,7 +285,7 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
         const MotionSnapshot begin(scene, projection, t0 + k * h), middle(scene, projection, t0 + (k + 0.5) * h),
             end(scene, projection, t0 + (k + 1) * h);
         // The max is exact in any order, so the reduction is deterministic.
-        const double extent = tbb::parallel_reduce(
+        const double extent = parallelReduce(
             tbb::blocked_range<std::size_t>(0, vertices.size(), 4096), 0.0,
             [&](const tbb::blocked_range<std::size_t>& range, double farthest) {
                 for (std::size_t i = range.begin(); i != range.end(); ++i) {

@@ -197,6 +197,12 @@ TEST(ClippedRenderer, BitIdenticalForOneAndTwoThreads) {
     EXPECT_GE(results[0].stats.clipped().audit->pixels, 3 * 32 * 32);
     EXPECT_GT(results[0].stats.clipped().audit->union_pixels, 0);
     EXPECT_EQ(results[0].stats.clipped().audit->violations, 0);
+    // The serial seconds are the render's time outside its parallel loops: a part of the total, and
+    // positive (a loop counted twice, e.g. a nested one, could take it below zero).
+    for (const RenderResult& r : results) {
+        EXPECT_GT(r.stats.clipped().seconds.serial, 0.0);
+        EXPECT_LT(r.stats.clipped().seconds.serial, r.stats.total_seconds);
+    }
 }
 
 }  // namespace clipblur
