@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 
 #include "renderer/parallel_time.h"
+#include "renderer/thread_scratch.h"
 #include "scene/object_motion.h"
 
 namespace clipblur {
@@ -57,8 +58,11 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
         std::uint32_t group;
         const FragmentMotion* motion;
     };
-    thread_local std::vector<Item> items;
-    thread_local std::vector<const Item*> active;
+    struct Scratch {
+        std::vector<Item> items;
+        std::vector<const Item*> active;
+    };
+    auto& [items, active] = threadScratch<Scratch>();
     items.clear();
     bool several = false;
     for (const FragmentRef& ref : refs) {

@@ -1,6 +1,7 @@
 #include "renderer/propagation/subframes.h"
 
 #include "renderer/geometry/swept_footprint.h"
+#include "renderer/thread_scratch.h"
 
 #include <algorithm>
 #include <array>
@@ -98,7 +99,10 @@ double ShutterPathSampler::pathLength(const MeshPoint& point) const {
 FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) const {
     FragmentMotion out;
     double max_speed = 0.0, max_depth_rate = 0.0;
-    thread_local std::vector<glm::dvec3> positions;  // raster x, y and depth
+    struct Positions {
+        std::vector<glm::dvec3> raster;  // raster x, y and depth
+    };
+    std::vector<glm::dvec3>& positions = threadScratch<Positions>().raster;
     const double t0 = nodes_.front().snapshot.time;
     std::array<glm::dvec2, 3> open{}, close{};
     std::size_t ends = 0;  // vertices with both end positions

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "renderer/geometry/predicates.h"
+#include "renderer/thread_scratch.h"
 
 namespace clipblur {
 
@@ -224,7 +225,10 @@ void shadeFragment(const ConvexPolygon& polygon, const FragmentSurface& on, cons
     if (!f.valid) return;
     // Per-thread buffers: one fragment's cells never outlive this call, and reuse avoids an allocation
     // per fragment in the subframe loop.
-    thread_local std::vector<ConvexPolygon> cells, next;
+    struct Cells {
+        std::vector<ConvexPolygon> cells, next;
+    };
+    auto& [cells, next] = threadScratch<Cells>();
     cells.assign(1, polygon);
     for (int axis = 0; axis < axes; ++axis) {
         next.clear();
