@@ -12,9 +12,9 @@ namespace clipblur {
 
 // The wall time a render's own thread spends in its parallel loops, so that the rest of its time, the
 // serial part that bounds the speed-up on more cores (Amdahl), can be reported. A ledger is installed on
-// the thread that runs the render, for its lifetime. Loops started through parallelFor and parallelReduce
-// on that thread add their wall time, the outermost only (a nested loop the thread runs as a task of an
-// outer one is already inside it); on any other thread (a TBB worker running a task) they add nothing.
+// the thread that runs the render, for its lifetime. Loops started through parallelFor, parallelInvoke and
+// parallelReduce on that thread add their wall time, the outermost only (a nested loop the thread runs as
+// a task of an outer one is already inside it); on any other thread (a TBB worker) they add nothing.
 class ParallelLedger {
 public:
     ParallelLedger() : previous_(std::exchange(current(), this)) {}
