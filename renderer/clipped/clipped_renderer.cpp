@@ -22,6 +22,7 @@
 #include "renderer/clipped/still_backdrop.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/clipped/time_error.h"
+#include "renderer/integrate/window_sums.h"
 #include "renderer/parallel_time.h"
 #include "renderer/stopwatch.h"
 #include "renderer/visibility/candidates.h"
@@ -111,60 +112,6 @@ void checkAudit(const AuditStats& audit) {
         throw Error(ExitCode::Render, "fragment audit: " + std::to_string(audit.violations) +
                                           " invariant violations; " + audit.first_violation);
 }
-
-// One pixel's sums from one tile: to the window pixel `out` when it is another tile's pixel.
-struct Spill {
-    std::size_t out = 0;
-    glm::dvec3 colour{0.0};
-    double covered = 0.0, depth = 0.0;
-    glm::dvec2 motion{0.0};
-    ObjectShares objects;  // ID mattes only
-    LevelDifference level{0.0f};  // the time-sampling error estimate's (time_error.h)
-};
-
-// Per-pixel sums over the render window (window-local, row-major).
-struct WindowSums {
-    std::vector<glm::dvec3> colour;
-    std::vector<double> covered;
-    std::vector<double> depth;
-    std::vector<glm::dvec2> motion;
-    std::vector<ObjectShares> objects;  // per object its share of `covered`; empty unless ID mattes are asked for
-    std::vector<LevelDifference> levels;  // per pixel, for estimateTimeError
-
-    // About 70 bytes a pixel, first touched (page faults) on a task per array.
-    WindowSums(std::size_t pixels, bool with_objects) {
-        parallelInvoke([&] { colour.resize(pixels); }, [&] { covered.resize(pixels); }, [&] { depth.resize(pixels); },
-                       [&] { motion.resize(pixels); }, [&] { objects.resize(with_objects ? pixels : 0); },
-                       [&] { levels.assign(pixels, LevelDifference(0.0f)); });
-    }
-
-    // Adds scale x one pixel's sums to pixel i, with its per-object areas when they are tracked.
-    void add(std::size_t i, double scale, const Spill& s) {
-        colour[i] += scale * s.colour;
-        covered[i] += scale * s.covered;
-        depth[i] += scale * s.depth;
-        motion[i] += scale * s.motion;
-        if (!objects.empty()) addShares(objects[i], s.objects, scale);
-        levels[i] += static_cast<float>(scale) * s.level;
-    }
-    // Adds scale x pixel p of a still image (no motion) to pixel i.
-    void addStill(std::size_t i, double scale, const PixelSums& still, std::size_t p) {
-        colour[i] += scale * still.colour[p];
-        covered[i] += scale * still.covered[p];
-        depth[i] += scale * still.depth[p];
-        motion[i] += scale * glm::dvec2(0.0);
-        if (!objects.empty() && !still.objects.empty()) addShares(objects[i], still.objects[p], scale);
-    }
-    // Adds pixel i of `other` (the same window) to pixel i.
-    void addPixel(std::size_t i, const WindowSums& other) {
-        colour[i] += other.colour[i];
-        covered[i] += other.covered[i];
-        depth[i] += other.depth[i];
-        motion[i] += other.motion[i];
-        if (!objects.empty() && !other.objects.empty()) addShares(objects[i], other.objects[i], 1.0);
-        levels[i] += other.levels[i];
-    }
-};
 
 // What every shutter segment shares: the job, the frame (its motion, Embree and shading state) and the
 // output layout.
@@ -577,25 +524,6 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
         collectSpills(weighted, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
     for (const ReclipStats& s : sub_stats) stats.merge(s);
     return n;
-}
-
-// Adds the tiles' spills after all tiles, in tile order per pixel, so the sums do not depend on which
-// thread finished first. Bands of rows are independent: each takes, from every tile in order, the run of
-// its spills that lands in the band (collectSpills leaves a tile's spills in row-major order). Then frees
-// them, in parallel too: tens of MB, each spill's object shares visited.
-void addSpills(std::vector<std::vector<Spill>>& spills, const PixelBounds& window, int band_rows, WindowSums& target) {
-    const std::size_t band = static_cast<std::size_t>(band_rows) * static_cast<std::size_t>(window.width());
-    if (band == 0) return;  // an empty window
-    const auto bands = static_cast<int>((window.area() + band - 1) / band);
-    parallelFor(0, bands, [&](int b) {
-        const std::size_t begin = static_cast<std::size_t>(b) * band, end = begin + band;
-        for (const auto& tile_spills : spills) {
-            auto s = std::lower_bound(tile_spills.begin(), tile_spills.end(), begin,
-                                      [](const Spill& spill, std::size_t i) { return spill.out < i; });
-            for (; s != tile_spills.end() && s->out < end; ++s) target.add(s->out, 1.0, *s);
-        }
-    });
-    parallelFor(std::size_t(0), spills.size(), [&](std::size_t t) { std::vector<Spill>().swap(spills[t]); });
 }
 
 // The paper's method over one shutter segment: fragment sets at both ends, per-tile re-clips,
