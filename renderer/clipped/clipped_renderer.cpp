@@ -170,24 +170,6 @@ struct SegmentTotals {
     std::optional<std::pair<std::vector<FragmentTriangle>, PixelSums>> carried;
 };
 
-// The sweep interval layout of a moving tile with n subframes: its fragments move at most reach pixels
-// during an interval (the plan bounds speed x interval by max_sweep_pixels / n; twice that allows for the
-// peak speed falling between the plan's samples), so they reach reach / 2 + 1 pixels past where they are
-// re-clipped. Tiles on the film edge also re-clip that far outside it, where nothing else would, because
-// surfaces there sweep into the film.
-SweepInterval sweepInterval(const PixelBounds& tile, const SubframePlan& plan, int n, const PixelBounds& film) {
-    SweepInterval s;
-    s.reach = 2.0 * plan.max_sweep_pixels / n + 1.0;
-    const int apron = static_cast<int>(std::ceil(0.5 * s.reach)) + 1;
-    s.resolve = tile;
-    if (tile.x0 == 0) s.resolve.x0 -= apron;
-    if (tile.y0 == 0) s.resolve.y0 -= apron;
-    if (tile.x1 == film.x1) s.resolve.x1 += apron;
-    if (tile.y1 == film.y1) s.resolve.y1 += apron;
-    s.box = PixelBounds::corners(s.resolve.x0 - apron, s.resolve.y0 - apron, s.resolve.x1 + apron, s.resolve.y1 + apron);
-    return s;
-}
-
 // One shutter segment of the frame (what moves over it), its share of the shutter, and every segment's
 // guard band.
 struct SegmentSpec {
@@ -275,12 +257,10 @@ struct SegmentPlan {
 // Sweep positions per interval of a sweep plan.
 std::vector<int> positionsOf(const ClippedContext& ctx, const SegmentSpec& seg, const SegmentPlan& plan,
                              const MotionPlan& motion) {
-    int intervals = 1;
-    for (const SubframePlan& p : motion.tiles) intervals = std::max(intervals, p.count);
     return sweepPositions(ctx.job.scene, ctx.frame.projection, plan.layers,
                           {.t0 = seg.window.t0,
                            .t1 = seg.window.t1,
-                           .intervals = intervals,
+                           .intervals = sharedIntervals(motion.tiles),
                            .spacing = ctx.job.render.sweep_spacing,
                            .max_positions = ctx.job.render.max_subframes});
 }
@@ -350,13 +330,8 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
     totals.stats.measured_fragment_paths += plan.motion.measured;
     totals.stats.near_crossing_fragments += plan.motion.near_crossings;
     totals.stats.sweep_backdrop_tiles += plan.motion.backdrop_tiles;
-    for (const SubframePlan& p : plan.motion.tiles) plan.intervals = std::max(plan.intervals, p.count);
-    if (plan.sweep) {
-        const double h = (seg.window.t1 - seg.window.t0) / plan.intervals;
-        for (int k = 0; k < plan.intervals; ++k)
-            plan.turns.push_back(intervalTurns(scene, ctx.frame.projection, seg.window.t0 + k * h, seg.window.t0 + (k + 1) * h,
-                                               plan.positions[static_cast<std::size_t>(k)]));
-    }
+    plan.intervals = sharedIntervals(plan.motion.tiles);
+    if (plan.sweep) plan.turns = turnsPerInterval(scene, ctx.frame.projection, seg.window.t0, seg.window.t1, plan.positions);
     totals.stats.seconds.motion_plan += secondsSince(stage);
 }
 
@@ -405,24 +380,6 @@ Spill subframeTotal(const WeightedSubframes& subframes, int x, int y) {
     return sum;
 }
 
-// The shutter curve's weight at each subframe time relative to its mean over the segment (linear there,
-// so the midpoints' factors average to 1 exactly in exact arithmetic). With sweep, `tilts` gets the
-// curve's slope over each interval relative to its weight at the interval's middle (SweepPath::tilt).
-std::vector<double> curveFactors(const SegmentSpec& seg, std::span<const double> times, double interval,
-                                 std::vector<double>& tilts) {
-    std::vector<double> factors(times.size(), 1.0);
-    tilts.assign(times.size(), 0.0);
-    if (seg.curve_begin == seg.curve_end) return factors;  // a box: every factor exactly 1
-    const double slope = (seg.curve_end - seg.curve_begin) / (seg.window.t1 - seg.window.t0);
-    const double mean = 0.5 * (seg.curve_begin + seg.curve_end);
-    for (std::size_t k = 0; k < times.size(); ++k) {
-        const double w = seg.curve_begin + slope * (times[k] - seg.window.t0);  // > 0 strictly inside the segment
-        factors[k] = w / mean;
-        tilts[k] = slope * interval / w;
-    }
-    return factors;
-}
-
 // Sweep: what a tile's subframes left in the window's pixels outside the tile, scaled by w.
 void collectSpills(const WeightedSubframes& subframes, const PixelBounds& tile, const PixelBounds& window, double w,
                    std::vector<Spill>& spilled) {
@@ -469,7 +426,7 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
     const PixelBounds& window = ctx.window;
     SweepInterval sweep;
     if (sweeping && n > 0) {
-        sweep = sweepInterval(tile, tile_plan, n, film);
+        sweep = sweepInterval(tile, tile_plan.max_sweep_pixels, n, film);
         sweep.groups = plan.motion.groups;
     }
     const PixelBounds reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
@@ -480,10 +437,12 @@ int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int ind
         s.track_error = sweeping;
     }
     std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
-    const std::vector<double> times = subframeTimes(ts, te, std::max(n, 1));
-    const double half = 0.5 * (te - ts) / std::max(n, 1);
-    std::vector<double> tilts;
-    const std::vector<double> factors = curveFactors(seg, times, 2.0 * half, tilts);
+    const SubframeLayout layout =
+        subframeLayout({.t0 = ts, .t1 = te, .curve_begin = seg.curve_begin, .curve_end = seg.curve_end}, n);
+    const std::vector<double>& times = layout.times;
+    const double half = layout.half;
+    const std::vector<double>& tilts = layout.tilts;
+    const std::vector<double>& factors = layout.factors;
     const TileReclip reclip{scene, ctx.frame.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
                             settings.audit};
     parallelFor(0, n, [&](int k) {

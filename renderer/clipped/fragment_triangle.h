@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -17,6 +18,21 @@ struct FragmentTriangle {
     std::uint32_t object = 0;
     std::uint32_t triangle = 0;
     std::array<glm::dvec3, 3> bary{};
+};
+
+class OdePropagator;
+
+// A fragment triangle of frame 0 (layer 0) or frame 1 (layer 1).
+struct FragmentRef {
+    std::uint32_t index = 0;
+    std::uint8_t layer = 0;
+};
+
+// The fragment triangles of both frames and per triangle its open-to-close raster motion (for the AOV).
+struct FragmentLayers {
+    std::array<const std::vector<FragmentTriangle>*, 2> triangles{};
+    std::array<std::vector<glm::vec2>, 2> motion;
+    const OdePropagator* ode = nullptr;  // render.path_method euler/rk4: the paper's ODE, else exact paths
 };
 
 }  // namespace clipblur

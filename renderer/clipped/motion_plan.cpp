@@ -5,8 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include <tbb/blocked_range.h>
-
 #include "renderer/parallel_time.h"
 #include "renderer/thread_scratch.h"
 #include "scene/object_motion.h"
@@ -271,40 +269,6 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
     for (const SubframePlan& p : plan.tiles) plan.capped_tiles += p.capped ? 1 : 0;
     for (const char b : plan.backdrop) plan.backdrop_tiles += b ? 1 : 0;
     return plan;
-}
-
-std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
-                                const SweepLayout& layout) {
-    const double t0 = layout.t0, t1 = layout.t1;
-    const int count = layout.intervals;
-    std::vector<MeshPoint> vertices;
-    for (const auto* triangles : layers.triangles) {
-        if (!triangles) continue;
-        for (const FragmentTriangle& t : *triangles)
-            for (const glm::dvec3& b : t.bary) vertices.push_back({t.object, t.triangle, b});
-    }
-    std::vector<int> positions(static_cast<std::size_t>(count), 1);
-    const double h = (t1 - t0) / count;
-    for (int k = 0; k < count; ++k) {
-        const MotionSnapshot begin(scene, projection, t0 + k * h), middle(scene, projection, t0 + (k + 0.5) * h),
-            end(scene, projection, t0 + (k + 1) * h);
-        // The max is exact in any order, so the reduction is deterministic.
-        const double extent = parallelReduce(
-            tbb::blocked_range<std::size_t>(0, vertices.size(), 4096), 0.0,
-            [&](const tbb::blocked_range<std::size_t>& range, double farthest) {
-                for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                    const ProjectedPoint a = project(begin, scene, vertices[i]), m = project(middle, scene, vertices[i]),
-                                         b = project(end, scene, vertices[i]);
-                    if (a.behind || m.behind || b.behind) continue;
-                    const SweepPath path = SweepPath::through({a.raster, a.depth}, {m.raster, m.depth}, {b.raster, b.depth});
-                    farthest = std::max(farthest, 2.0 * path.reach());
-                }
-                return farthest;
-            },
-            [](double x, double y) { return std::max(x, y); });
-        positions[static_cast<std::size_t>(k)] = subframeCount(extent / layout.spacing, layout.max_positions);
-    }
-    return positions;
 }
 
 }  // namespace clipblur

@@ -55,22 +55,4 @@ struct MotionPlanOptions {
 MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers,
                       const FragmentPaths& paths, const MotionPlanOptions& options);
 
-// How sweep positions are laid out: `intervals` equal intervals of [t0, t1], at most `spacing` pixels and
-// at most `max_positions` positions apart.
-struct SweepLayout {
-    double t0 = 0.0, t1 = 1.0;
-    int intervals = 1;
-    double spacing = 1.0;
-    int max_positions = 1;
-};
-
-// Sweep integration: the positions of each of the layout's equal intervals of [t0, t1], shared by every fragment
-// (equal times keep shared edges closed) and spaced so that no fragment vertex moves more than `spacing`
-// pixels between them during that interval: along the parabola through its positions at the interval's
-// ends and middle, as a swept fragment moves. An interval where things move slowly (the end of a dolly
-// away) gets fewer positions than one where they move fast. Vertices at or behind the camera plane are
-// left out (they are not swept, see SweepInterval::reach).
-std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
-                                const SweepLayout& layout);
-
 }  // namespace clipblur

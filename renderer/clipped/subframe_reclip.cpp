@@ -273,25 +273,6 @@ void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, const 
     }
 }
 
-}  // namespace
-
-IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, double begin, double end, int positions) {
-    const double middle = 0.5 * (begin + end);
-    std::vector<double> times;
-    for (int k = 0; k < positions; ++k) times.push_back(begin + (end - begin) * (k + 0.5) / positions);
-    IntervalTurns out;
-    out.at_positions = cameraTurns(scene, projection, middle, times);
-    if (out.at_positions.empty()) return out;  // the positions see no turn (one position: the middle)
-    const std::vector<glm::dmat3> ends = cameraTurns(scene, projection, middle, std::vector<double>{begin, end});
-    if (!ends.empty()) {
-        out.unturn_begin = glm::inverse(ends.front());
-        out.unturn_end = glm::inverse(ends.back());
-    }
-    return out;
-}
-
-namespace {
-
 // One re-clip's state across the pixels of its region.
 struct ReclipPass {
     const TileReclip& tile;
@@ -412,7 +393,7 @@ void queueSwept(ReclipPass& pass, const Fragment& fragment, const ShadedFragment
     }
     int positions = 1;
     SweepPath shift;
-    if (path && path->reach() <= 0.5 * sweep.reach) {
+    if (path && sweep.sweeps(*path)) {
         shift = *path;
         shift.tilt = sweep.tilt;
         if (shift.moves()) positions = sweep.positions;

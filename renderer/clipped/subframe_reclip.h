@@ -11,6 +11,7 @@
 #include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/fragment_tile.h"
 #include "renderer/geometry/swept_footprint.h"
+#include "renderer/integrate/interval_layout.h"
 #include "renderer/object_coverage.h"
 #include "renderer/propagation/ode_propagation.h"
 #include "renderer/propagation/surface_path.h"
@@ -19,19 +20,6 @@
 #include "renderer/tiles.h"
 
 namespace clipblur {
-
-// A fragment triangle of frame 0 (layer 0) or frame 1 (layer 1).
-struct FragmentRef {
-    std::uint32_t index = 0;
-    std::uint8_t layer = 0;
-};
-
-// The fragment triangles of both frames and per triangle its open-to-close raster motion (for the AOV).
-struct FragmentLayers {
-    std::array<const std::vector<FragmentTriangle>*, 2> triangles{};
-    std::array<std::vector<glm::vec2>, 2> motion;
-    const OdePropagator* ode = nullptr;  // render.path_method euler/rk4: the paper's ODE, else exact paths
-};
 
 // One subframe's pixel values over a box of pixels (box-local, row-major), before the background is
 // added. The box is the tile, or with sweep integration the tile and the margin its fragments reach.
@@ -49,39 +37,6 @@ struct TileSums {
     std::vector<glm::dvec4> d3;
 
     void reset(const PixelBounds& box);
-};
-
-// A turning camera over a sweep interval [begin, end]: its turn from the middle to each of `positions`
-// equally spaced times (the midpoints, as the sweep places fragments) and the inverse turns at begin and
-// end; no turns when its orientation is the same at all positions. The same for every tile of the interval.
-struct IntervalTurns {
-    std::vector<glm::dmat3> at_positions;
-    glm::dmat3 unturn_begin{1.0}, unturn_end{1.0};
-};
-IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, double begin, double end, int positions);
-
-// Sweep integration (render.time_integration: sweep): the subframe at time t stands for the interval
-// [begin, end] around it. Each re-clipped fragment is moved along the path of the surface point under its
-// centroid (the parabola through its exact positions at begin, t and end), stretched along the raster axes
-// as the surface under it stretches (a dolly), and placed at `positions` equally spaced times, the same
-// times for every fragment of the interval: fragments sampled at different
-// times would open cracks and overlaps along their shared edges. Visibility stays as resolved at t, so for
-// what moves in the image without changing what it hides this equals point subframes at all those times;
-// that is why re-clips can be spaced by relative motion and path curvature alone.
-struct SweepInterval {
-    const MotionSnapshot* begin = nullptr;
-    const MotionSnapshot* end = nullptr;
-    int positions = 1;
-    // A path reaching farther than reach / 2 (px) from t is not swept: the fragment stays a point sample
-    // at t. The tile plan bounds every path by it; only paths it could not measure (camera plane) exceed it.
-    double reach = 0.0;
-    PixelBounds resolve;  // the pixels to re-clip: the tile, grown past the film edge by what can sweep in
-    PixelBounds box;      // the pixels the sweep can reach: resolve grown by reach / 2 + 1
-    // A turning camera's turns over the interval, shared by its tiles; null when it does not turn.
-    const IntervalTurns* turns = nullptr;
-    // Per object, its motion group (MotionPlan::groups): a pixel's fragments of one group move alike.
-    std::span<const std::uint32_t> groups;
-    double tilt = 0.0;  // the shutter curve over the interval (SweepPath::tilt); 0 for a box
 };
 
 // Per px^2 of a swept polygon, what each object adds to its coverage: a fragment's sources with their

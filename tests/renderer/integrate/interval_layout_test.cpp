@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "renderer/clipped/motion_plan.h"
+#include "renderer/integrate/interval_layout.h"
 #include "support/motion_scenes.h"
 
 namespace clipblur {

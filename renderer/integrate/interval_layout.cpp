@@ -1,0 +1,109 @@
+#include "renderer/integrate/interval_layout.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+
+#include "renderer/parallel_time.h"
+
+namespace clipblur {
+
+IntervalTurns intervalTurns(const Scene& scene, const Projection& projection, double begin, double end, int positions) {
+    const double middle = 0.5 * (begin + end);
+    std::vector<double> times;
+    for (int k = 0; k < positions; ++k) times.push_back(begin + (end - begin) * (k + 0.5) / positions);
+    IntervalTurns out;
+    out.at_positions = cameraTurns(scene, projection, middle, times);
+    if (out.at_positions.empty()) return out;  // the positions see no turn (one position: the middle)
+    const std::vector<glm::dmat3> ends = cameraTurns(scene, projection, middle, std::vector<double>{begin, end});
+    if (!ends.empty()) {
+        out.unturn_begin = glm::inverse(ends.front());
+        out.unturn_end = glm::inverse(ends.back());
+    }
+    return out;
+}
+
+SweepInterval sweepInterval(const PixelBounds& tile, double max_sweep_pixels, int n, const PixelBounds& film) {
+    SweepInterval s;
+    s.reach = 2.0 * max_sweep_pixels / n + 1.0;
+    const int apron = static_cast<int>(std::ceil(0.5 * s.reach)) + 1;
+    s.resolve = tile;
+    if (tile.x0 == 0) s.resolve.x0 -= apron;
+    if (tile.y0 == 0) s.resolve.y0 -= apron;
+    if (tile.x1 == film.x1) s.resolve.x1 += apron;
+    if (tile.y1 == film.y1) s.resolve.y1 += apron;
+    s.box = PixelBounds::corners(s.resolve.x0 - apron, s.resolve.y0 - apron, s.resolve.x1 + apron, s.resolve.y1 + apron);
+    return s;
+}
+
+std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
+                                const SweepLayout& layout) {
+    const double t0 = layout.t0, t1 = layout.t1;
+    const int count = layout.intervals;
+    std::vector<MeshPoint> vertices;
+    for (const auto* triangles : layers.triangles) {
+        if (!triangles) continue;
+        for (const FragmentTriangle& t : *triangles)
+            for (const glm::dvec3& b : t.bary) vertices.push_back({t.object, t.triangle, b});
+    }
+    std::vector<int> positions(static_cast<std::size_t>(count), 1);
+    const double h = (t1 - t0) / count;
+    for (int k = 0; k < count; ++k) {
+        const MotionSnapshot begin(scene, projection, t0 + k * h), middle(scene, projection, t0 + (k + 0.5) * h),
+            end(scene, projection, t0 + (k + 1) * h);
+        // The max is exact in any order, so the reduction is deterministic.
+        const double extent = parallelReduce(
+            tbb::blocked_range<std::size_t>(0, vertices.size(), 4096), 0.0,
+            [&](const tbb::blocked_range<std::size_t>& range, double farthest) {
+                for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                    const ProjectedPoint a = project(begin, scene, vertices[i]), m = project(middle, scene, vertices[i]),
+                                         b = project(end, scene, vertices[i]);
+                    if (a.behind || m.behind || b.behind) continue;
+                    const SweepPath path = SweepPath::through({a.raster, a.depth}, {m.raster, m.depth}, {b.raster, b.depth});
+                    farthest = std::max(farthest, pathTravel(path));
+                }
+                return farthest;
+            },
+            [](double x, double y) { return std::max(x, y); });
+        positions[static_cast<std::size_t>(k)] = subframeCount(extent / layout.spacing, layout.max_positions);
+    }
+    return positions;
+}
+
+int sharedIntervals(std::span<const SubframePlan> tiles) {
+    int intervals = 1;
+    for (const SubframePlan& p : tiles) intervals = std::max(intervals, p.count);
+    return intervals;
+}
+
+std::vector<IntervalTurns> turnsPerInterval(const Scene& scene, const Projection& projection, double t0, double t1,
+                                            std::span<const int> positions) {
+    const int intervals = static_cast<int>(positions.size());
+    const double h = (t1 - t0) / intervals;
+    std::vector<IntervalTurns> turns;
+    for (int k = 0; k < intervals; ++k)
+        turns.push_back(intervalTurns(scene, projection, t0 + k * h, t0 + (k + 1) * h, positions[static_cast<std::size_t>(k)]));
+    return turns;
+}
+
+SubframeLayout subframeLayout(const SegmentSpan& span, int n) {
+    SubframeLayout layout;
+    layout.times = subframeTimes(span.t0, span.t1, std::max(n, 1));
+    layout.half = 0.5 * (span.t1 - span.t0) / std::max(n, 1);
+    const std::size_t count = layout.times.size();
+    layout.factors.assign(count, 1.0);
+    layout.tilts.assign(count, 0.0);
+    if (span.curve_begin == span.curve_end) return layout;  // a box: every factor exactly 1
+    const double interval = 2.0 * layout.half;
+    const double slope = (span.curve_end - span.curve_begin) / (span.t1 - span.t0);
+    const double mean = 0.5 * (span.curve_begin + span.curve_end);
+    for (std::size_t k = 0; k < count; ++k) {
+        const double w = span.curve_begin + slope * (layout.times[k] - span.t0);  // > 0 strictly inside the segment
+        layout.factors[k] = w / mean;
+        layout.tilts[k] = slope * interval / w;
+    }
+    return layout;
+}
+
+}  // namespace clipblur
