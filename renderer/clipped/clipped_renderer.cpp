@@ -22,6 +22,7 @@
 #include "renderer/clipped/still_backdrop.h"
 #include "renderer/clipped/subframe_reclip.h"
 #include "renderer/clipped/time_error.h"
+#include "renderer/integrate/tile_integrator.h"
 #include "renderer/integrate/window_sums.h"
 #include "renderer/parallel_time.h"
 #include "renderer/stopwatch.h"
@@ -249,9 +250,7 @@ struct SegmentPlan {
     std::optional<OdePropagator> ode;
     MotionPlan motion;
     bool sweep = false;  // the segment's time integration, time_integration auto resolved
-    int intervals = 1;
-    std::vector<int> positions;        // sweep: per interval
-    std::vector<IntervalTurns> turns;  // sweep: a turning camera's turns per interval
+    SweepSchedule intervals;  // sweep: what its moving tiles share
 };
 
 // Sweep positions per interval of a sweep plan.
@@ -294,14 +293,14 @@ void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, Segmen
         }
         plan.sweep = cost.sweep < cost.points;
         plan.motion = std::move(plan.sweep ? *swept : points);
-        if (plan.sweep) plan.positions = std::move(positions);
+        if (plan.sweep) plan.intervals.positions = std::move(positions);
         stats.auto_cost_points += cost.points;
         stats.auto_cost_sweep += cost.sweep;
     } else {
         plan.sweep = settings.maySweep();
         options.sweep = plan.sweep;
         plan.motion = planMotion(ctx.frame, seg.window, plan.layers, paths, options);
-        if (plan.sweep) plan.positions = positionsOf(ctx, seg, plan, plan.motion);
+        if (plan.sweep) plan.intervals.positions = positionsOf(ctx, seg, plan, plan.motion);
     }
     ++(plan.sweep ? stats.segments_sweep : stats.segments_points);
 }
@@ -330,214 +329,95 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
     totals.stats.measured_fragment_paths += plan.motion.measured;
     totals.stats.near_crossing_fragments += plan.motion.near_crossings;
     totals.stats.sweep_backdrop_tiles += plan.motion.backdrop_tiles;
-    plan.intervals = sharedIntervals(plan.motion.tiles);
-    if (plan.sweep) plan.turns = turnsPerInterval(scene, ctx.frame.projection, seg.window.t0, seg.window.t1, plan.positions);
+    plan.intervals.intervals = sharedIntervals(plan.motion.tiles);
+    if (plan.sweep)
+        plan.intervals.turns =
+            turnsPerInterval(scene, ctx.frame.projection, seg.window.t0, seg.window.t1, plan.intervals.positions);
     totals.stats.seconds.motion_plan += secondsSince(stage);
 }
 
-// One segment as its tiles integrate it: the spec, the fragment sets at its ends and the plan.
-struct SegmentWork {
-    const SegmentSpec& spec;
-    const SegmentEnds& ends;
-    const SegmentPlan& plan;
-};
-
-// What the tiles of one segment write: their own pixels of the window directly (each tile owns them)
-// and, with sweep integration, what they spill into other tiles' pixels, kept per tile.
-struct TileOutputs {
-    WindowSums& sums;
-    std::vector<std::vector<Spill>>& spills;
-    tbb::enumerable_thread_specific<ReclipScratch>& scratches;
-};
-
-// A tile's subframe sums and the factor each counts with (the shutter curve; exactly 1 for a box). For
-// the error estimate: point subframes are the samples of a nested rule over the segment (`rule`); with
-// sweep each subframe's TileSums carries its interval's.
-struct WeightedSubframes {
-    const std::vector<TileSums>& sums;
-    std::span<const double> factors;
-    const NestedRule* rule = nullptr;
-};
-
-// One pixel's sums over a tile's subframes, in subframe order: bit-identical for any thread count.
-Spill subframeTotal(const WeightedSubframes& subframes, int x, int y) {
-    Spill sum;
-    for (std::size_t k = 0; k < subframes.sums.size(); ++k) {
-        const TileSums& s = subframes.sums[k];
-        if (!s.box.contains(x, y)) continue;  // sweep: no footprint of this subframe reaches the pixel
-        const std::size_t i = s.box.index(x, y);
-        const double f = subframes.factors[k];
-        sum.colour += f * s.colour[i];
-        sum.covered += f * s.covered[i];
-        sum.depth += f * s.depth[i];
-        sum.motion += f * s.motion[i];
-        if (s.track_objects) addShares(sum.objects, s.objects[i], f);
-        if (s.track_error)
-            sum.level += LevelDifference(f * s.d3[i]);
-        else if (subframes.rule)
-            sum.level += LevelDifference(subframes.rule->to3[k] * f * glm::dvec4(s.colour[i], s.covered[i]));
-    }
-    return sum;
-}
-
-// Sweep: what a tile's subframes left in the window's pixels outside the tile, scaled by w.
-void collectSpills(const WeightedSubframes& subframes, const PixelBounds& tile, const PixelBounds& window, double w,
-                   std::vector<Spill>& spilled) {
-    const std::vector<TileSums>& tile_sums = subframes.sums;
-    PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
-    for (const TileSums& s : tile_sums) reached = reached.unite(s.box);
-    const PixelBounds seen = reached.intersect(window);
-    for (int y = seen.y0; y < seen.y1; ++y) {
-        for (int x = seen.x0; x < seen.x1; ++x) {
-            if (tile.contains(x, y)) continue;
-            Spill sum = subframeTotal(subframes, x, y);
-            if (sum.covered == 0.0) continue;
-            sum.out = window.index(x, y);
-            sum.colour *= w;
-            sum.covered *= w;
-            sum.depth *= w;
-            sum.motion *= w;
-            for (ObjectShare& o : sum.objects) o.coverage *= w;
-            sum.level *= static_cast<float>(w);
-            spilled.push_back(std::move(sum));
-        }
-    }
-}
-
-// Steps 3-5 for one tile: per subframe propagate, re-clip and reduce; the tile adds weight x the average
-// of its subframes to its pixels. Where nothing moves (and no moving shadow can change the lighting
-// between the frames) the segment-start image is the answer. Returns the tile's re-clip count.
-int integrateTile(const ClippedContext& ctx, const SegmentWork& segment, int index, TileOutputs& out,
-                  ReclipStats& stats) {
-    const SegmentSpec& seg = segment.spec;
-    const SegmentEnds& ends = segment.ends;
-    const SegmentPlan& plan = segment.plan;
-    const Scene& scene = ctx.job.scene;
+// What the tiles of a segment integrate: its span, weight and fixed count, its ends and its plan.
+SegmentIntegration integrationOf(const ClippedContext& ctx, const SegmentSpec& seg, const SegmentEnds& ends,
+                                 const SegmentPlan& plan) {
     const RenderSettings& settings = ctx.job.render;
-    const bool sweeping = plan.sweep;
-    const bool track_objects = ctx.job.output.cryptomatte.enabled;
-    const double ts = seg.window.t0, te = seg.window.t1;
-    const PixelBounds tile = ctx.frame.grid.tile(index);
-    const SubframePlan& tile_plan = plan.motion.tiles[static_cast<std::size_t>(index)];
-    const bool still_tile =
-        ends.still_scene || (tile_plan.max_sweep_pixels == 0.0 && seg.subframes == 0 && !settings.shadows);
-    const int n = still_tile ? 0 : tile_plan.count;
-    const PixelBounds film = scene.film.pixels();
-    const PixelBounds& window = ctx.window;
-    SweepInterval sweep;
-    if (sweeping && n > 0) {
-        sweep = sweepInterval(tile, tile_plan.max_sweep_pixels, n, film);
-        sweep.groups = plan.motion.groups;
-    }
-    const PixelBounds reach = sweep.box.x0 < sweep.box.x1 ? sweep.box : tile;
-    if (!window.overlaps(reach)) return -1;
-    std::vector<TileSums> tile_sums(static_cast<std::size_t>(n));
-    for (TileSums& s : tile_sums) {
-        s.track_objects = track_objects;
-        s.track_error = sweeping;
-    }
-    std::vector<ReclipStats> sub_stats(static_cast<std::size_t>(n));
-    const SubframeLayout layout =
-        subframeLayout({.t0 = ts, .t1 = te, .curve_begin = seg.curve_begin, .curve_end = seg.curve_end}, n);
-    const std::vector<double>& times = layout.times;
-    const double half = layout.half;
-    const std::vector<double>& tilts = layout.tilts;
-    const std::vector<double>& factors = layout.factors;
-    const TileReclip reclip{scene, ctx.frame.shader, plan.layers, plan.motion.refs[static_cast<std::size_t>(index)], tile,
-                            settings.audit};
-    parallelFor(0, n, [&](int k) {
-        const double t = times[static_cast<std::size_t>(k)];
-        const MotionSnapshot snapshot(scene, ctx.frame.projection, t);
-        std::optional<MotionSnapshot> begin, end;
-        SweepInterval interval = sweep;
-        if (sweeping) {
-            begin.emplace(scene, ctx.frame.projection, t - half);
-            end.emplace(scene, ctx.frame.projection, t + half);
-            interval.begin = &*begin;
-            interval.end = &*end;
-            interval.positions = plan.positions[static_cast<std::size_t>(k)];
-            interval.tilt = tilts[static_cast<std::size_t>(k)];
-            const IntervalTurns& turn = plan.turns[static_cast<std::size_t>(k)];
-            if (n == plan.intervals && !turn.at_positions.empty()) interval.turns = &turn;
-        }
-        reclipSubframe(reclip, {snapshot, (t - ts) / (te - ts), sweeping ? &interval : nullptr}, out.scratches.local(),
-                       tile_sums[static_cast<std::size_t>(k)], sub_stats[static_cast<std::size_t>(k)]);
-    });
-    const double w = seg.weight / std::max(n, 1);
-    const NestedRule rule(sweeping ? 1 : n);
-    const WeightedSubframes weighted{tile_sums, factors, sweeping ? nullptr : &rule};
-    const PixelBounds mine = tile.intersect(window);
-    for (int y = mine.y0; y < mine.y1; ++y) {
-        for (int x = mine.x0; x < mine.x1; ++x) {
-            const std::size_t pixel_out = window.index(x, y);
-            if (still_tile) {
-                const std::size_t pixel = film.index(x, y);
-                out.sums.addStill(pixel_out, seg.weight, ends.still, pixel);
-                continue;
-            }
-            const Spill sum = subframeTotal(weighted, x, y);
-            out.sums.add(pixel_out, w, sum);
-        }
-    }
-    if (sweeping && n > 0)
-        collectSpills(weighted, tile, window, w, out.spills[static_cast<std::size_t>(index)]);
-    for (const ReclipStats& s : sub_stats) stats.merge(s);
-    return n;
+    return {.frame = ctx.frame,
+            .window = ctx.window,
+            .span = {.t0 = seg.window.t0, .t1 = seg.window.t1, .curve_begin = seg.curve_begin, .curve_end = seg.curve_end},
+            .weight = seg.weight,
+            .subframes = seg.subframes,
+            .shadows = settings.shadows,
+            .audit = settings.audit,
+            .track_objects = ctx.job.output.cryptomatte.enabled,
+            .still = ends.still,
+            .still_scene = ends.still_scene,
+            .layers = plan.layers,
+            .motion = plan.motion,
+            .sweep = plan.sweep ? &plan.intervals : nullptr};
 }
 
-// The paper's method over one shutter segment: fragment sets at both ends, per-tile re-clips,
-// integration of each tile, then the merge in tile order; adds weight x (the segment's average) to `sums`.
+// With a backdrop in some tile (MotionPlan::backdrop), the sums the segment's front goes to, kept apart
+// until every spill is in; the backdrop's image is made when a segment first needs it.
+std::optional<WindowSums> backdropFront(const ClippedContext& ctx, const SegmentPlan& plan, std::size_t pixels,
+                                        SegmentTotals& totals) {
+    if (plan.motion.backdrop_tiles == 0) return std::nullopt;
+    std::optional<WindowSums> front(std::in_place, pixels, ctx.job.output.cryptomatte.enabled);
+    if (!totals.backdrop)
+        totals.backdrop = renderBackdrop(ctx.job, ctx.frame, ctx.backdrop, 0.5 * (ctx.frame.motion.t0() + ctx.frame.motion.t1()),
+                                         totals.stats.backdrop.emplace());
+    return front;
+}
+
+// Integrates every tile of the segment into `target` (integrateTile), with progress and cancellation;
+// returns what sweep spilled into other tiles' pixels, per tile. Visibility and the plan stay global so a
+// window's pixels are bit-identical to the same pixels of the whole film; only the tiles the window
+// touches are integrated.
+std::vector<std::vector<Spill>> integrateTiles(const ClippedContext& ctx, const SegmentSpec& seg,
+                                               const SegmentIntegration& segment, WindowSums& target, ClippedStats& stats) {
+    const int tiles = ctx.frame.grid.count();
+    std::atomic<bool> cancelled{false};
+    std::atomic<long long> tiles_done{0};
+    std::mutex merge_mutex;
+    const long long progress_total = static_cast<long long>(tiles) * static_cast<long long>(seg.bands.size());
+    std::vector<std::vector<Spill>> spills(segment.sweep ? static_cast<std::size_t>(tiles) : 0);
+    tbb::enumerable_thread_specific<ReclipScratch> scratches;
+    TileOutputs outputs{target, spills, scratches};
+    parallelFor(0, tiles, [&](int index) {
+        if (ctx.frame.callbacks.cancel && ctx.frame.callbacks.cancel->load(std::memory_order_relaxed)) {
+            cancelled = true;
+            return;
+        }
+        ReclipStats tile_stats;
+        const int n = integrateTile(segment, index, outputs, tile_stats);
+        std::lock_guard lock(merge_mutex);
+        if (n >= 0) {
+            stats.reclip.merge(tile_stats);
+            stats.subframes_total += n;
+            stats.still_tiles += n == 0 ? 1 : 0;
+            stats.subframes_max_per_tile = std::max<long long>(stats.subframes_max_per_tile, n);
+        }
+        const long long done = ++tiles_done + static_cast<long long>(seg.index) * tiles;
+        if (ctx.frame.callbacks.progress) ctx.frame.callbacks.progress(done, progress_total);
+    });
+    if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
+    for (const auto& tile_spills : spills) stats.sweep_spilled_pixels += static_cast<long long>(tile_spills.size());
+    return spills;
+}
+
+// The paper's method over one shutter segment: fragment sets at both ends, the plan of each tile's
+// re-clips, integration of each tile, then the merge of what tiles spilled, in tile order, and a
+// backdrop's composite; adds weight x (the segment's average) to `sums`.
 void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums& sums, SegmentTotals& totals) {
     const SegmentEnds ends = buildSegmentEnds(ctx, seg, totals);
     SegmentPlan plan;
     planSegment(ctx, seg, ends, totals, plan);
 
-    // With a backdrop the segment's front sums are kept apart until every spill is in.
-    std::optional<WindowSums> front;
-    if (plan.motion.backdrop_tiles > 0) {
-        front.emplace(sums.colour.size(), ctx.job.output.cryptomatte.enabled);
-        if (!totals.backdrop)
-            totals.backdrop = renderBackdrop(ctx.job, ctx.frame, ctx.backdrop, 0.5 * (ctx.frame.motion.t0() + ctx.frame.motion.t1()),
-                                             totals.stats.backdrop.emplace());
-    }
+    std::optional<WindowSums> front = backdropFront(ctx, plan, sums.colour.size(), totals);
     WindowSums& target = front ? *front : sums;
-
-    // Visibility and the plan above stay global so a window's pixels are bit-identical to the same pixels
-    // of the whole film; only the tiles the window touches are integrated.
     const auto stage = Clock::now();
-    std::atomic<bool> cancelled{false};
-    std::atomic<long long> tiles_done{0};
-    std::mutex merge_mutex;
-    const long long progress_total = static_cast<long long>(ctx.frame.grid.count()) * static_cast<long long>(seg.bands.size());
-    const bool sweeping = plan.sweep;
-    std::vector<std::vector<Spill>> spills(sweeping ? static_cast<std::size_t>(ctx.frame.grid.count()) : 0);
-    // Scratch buffers per thread, not per task (allocating them is page faults). Every use clears what it
-    // reads, and reclipSubframe starts no TBB work, so a thread never holds its scratch across a steal.
-    tbb::enumerable_thread_specific<ReclipScratch> scratches;
-    TileOutputs outputs{target, spills, scratches};
-    parallelFor(0, ctx.frame.grid.count(), [&](int index) {
-        if (ctx.frame.callbacks.cancel && ctx.frame.callbacks.cancel->load(std::memory_order_relaxed)) {
-            cancelled = true;
-            return;
-        }
-        ReclipStats stats;
-        const int n = integrateTile(ctx, {seg, ends, plan}, index, outputs, stats);
-        std::lock_guard lock(merge_mutex);
-        if (n >= 0) {
-            totals.stats.reclip.merge(stats);
-            totals.stats.subframes_total += n;
-            totals.stats.still_tiles += n == 0 ? 1 : 0;
-            totals.stats.subframes_max_per_tile = std::max<long long>(totals.stats.subframes_max_per_tile, n);
-        }
-        const long long done = ++tiles_done + static_cast<long long>(seg.index) * ctx.frame.grid.count();
-        if (ctx.frame.callbacks.progress) ctx.frame.callbacks.progress(done, progress_total);
-    });
-    for (const auto& tile_spills : spills) totals.stats.sweep_spilled_pixels += static_cast<long long>(tile_spills.size());
+    std::vector<std::vector<Spill>> spills = integrateTiles(ctx, seg, integrationOf(ctx, seg, ends, plan), target, totals.stats);
     addSpills(spills, ctx.window, ctx.frame.grid.tileSize(), target);
-    if (front)
-        compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.weight}, sums);
+    if (front) compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.weight}, sums);
     totals.stats.seconds.tiles += secondsSince(stage);
-    if (cancelled) throw Error(ExitCode::Interrupted, "render cancelled");
 }
 
 }  // namespace

@@ -90,6 +90,14 @@ int sharedIntervals(std::span<const SubframePlan> tiles);
 std::vector<IntervalTurns> turnsPerInterval(const Scene& scene, const Projection& projection, double t0, double t1,
                                             std::span<const int> positions);
 
+// The sweep intervals a segment's moving tiles share: their count (sharedIntervals) and per interval its
+// positions (sweepPositions) and a turning camera's turns (turnsPerInterval).
+struct SweepSchedule {
+    int intervals = 1;
+    std::vector<int> positions;
+    std::vector<IntervalTurns> turns;
+};
+
 // A shutter segment's span and the shutter curve's weight at its ends (ShutterSegment; equal for a box).
 struct SegmentSpan {
     double t0 = 0.0, t1 = 1.0;
