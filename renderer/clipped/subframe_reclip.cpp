@@ -12,33 +12,6 @@
 
 namespace clipblur {
 
-void TileSums::reset(const PixelBounds& b) {
-    box = b;
-    const std::size_t pixels = b.area();
-    colour.assign(pixels, glm::dvec3(0.0));
-    covered.assign(pixels, 0.0);
-    depth.assign(pixels, 0.0);
-    motion.assign(pixels, glm::dvec2(0.0));
-    objects.assign(track_objects ? pixels : 0, {});
-    d3.assign(track_error ? pixels : 0, glm::dvec4(0.0));
-}
-
-void PolygonObjects::add(int object, double amount) {
-    for (int k = 0; k < count; ++k) {
-        if (shares[static_cast<std::size_t>(k)].object == object) {
-            shares[static_cast<std::size_t>(k)].coverage += amount;
-            return;
-        }
-    }
-    // Two sources per fragment, minus a rectangle's two: four entries always suffice.
-    if (count == static_cast<int>(shares.size())) throw std::logic_error("PolygonObjects: more than 4 objects");
-    shares[static_cast<std::size_t>(count++)] = {object, amount};
-}
-
-bool PolygonObjects::none() const {
-    return std::all_of(shares.begin(), shares.begin() + count, [](const ObjectShare& s) { return s.coverage == 0.0; });
-}
-
 namespace {
 
 // Moves fragment triangle `ref` to the re-clip's time and adds it to the screen triangles, weighted by its
@@ -157,122 +130,6 @@ void addTextured(const ConvexPolygon& piece, const glm::dvec3& colour,
     textured.push_back({piece, colour});
 }
 
-// Sweep: a pixel whose fragments are all of one motion group (objects moving as one, MotionPlan::groups),
-// stretch alike and together fill an axis-aligned rectangle
-// (mostly the whole pixel, cut only where the two frames' triangulations of one surface cross it) is
-// swept as that rectangle, with the largest fragment's path and colour; the other fragments add only
-// their colour differences (none on a flat-shaded surface). The rectangle takes the separable fast path,
-// where each cut piece took the general one at several times the cost. Within a pixel surfaces that move
-// as one in the world move alike on screen to well under a pixel, so one path serves the pixel; the AOVs
-// take the fragments' area-weighted means. `swept` holds the pixel's entries from `begin` on.
-void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector<SweptPolygon>& staging) {
-    std::size_t count = 0, base = begin;
-    double area = 0.0, largest = -1.0;
-    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    glm::dvec2 motion(0.0);
-    double depth = 0.0;
-    for (std::size_t i = begin; i < swept.size(); ++i) {
-        const SweptPolygon& e = swept[i];
-        if (!e.coverage) continue;
-        ++count;
-        const double a = e.polygon.area();
-        area += a;
-        motion += a * e.motion;
-        depth += a * e.depth;
-        const RasterBounds b = e.polygon.bounds();
-        lo = glm::min(lo, b.lo);
-        hi = glm::max(hi, b.hi);
-        if (a > largest) {
-            largest = a;
-            base = i;
-        }
-    }
-    // Non-overlapping pieces whose areas add up to their bounding box's (to rounding) fill it.
-    const double box_area = (hi.x - lo.x) * (hi.y - lo.y);
-    if (count < 2 || !(std::abs(box_area - area) <= 1e-9 * box_area)) return;
-    // One path serves the pixel only where its pieces also stretch alike (to 1%: 0.01 px over a pixel);
-    // two faces meeting at an edge do not (one turning edge-on shrinks to nothing, the other stays).
-    const SweepPath& p = swept[base].path;
-    for (std::size_t i = begin; i < swept.size(); ++i) {
-        const SweepPath& q = swept[i].path;
-        if (swept[i].coverage && (glm::any(glm::greaterThan(glm::abs(q.open_stretch - p.open_stretch), glm::dvec2(0.01))) ||
-                                  glm::any(glm::greaterThan(glm::abs(q.close_stretch - p.close_stretch), glm::dvec2(0.01)))))
-            return;
-    }
-    staging.clear();
-    SweptPolygon rectangle = swept[base];
-    rectangle.polygon.clear();
-    for (const glm::dvec2& corner : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)}) rectangle.polygon.push(corner);
-    rectangle.motion = motion / area;
-    rectangle.depth = depth / area;
-    staging.push_back(rectangle);
-    for (std::size_t i = begin; i < swept.size(); ++i) {
-        SweptPolygon e = swept[i];
-        e.path = rectangle.path;
-        e.positions = rectangle.positions;
-        if (e.coverage) {
-            if (i == base) continue;
-            e.colour -= rectangle.colour;
-            for (int k = 0; k < rectangle.objects.count; ++k)
-                e.objects.add(rectangle.objects.shares[static_cast<std::size_t>(k)].object,
-                              -rectangle.objects.shares[static_cast<std::size_t>(k)].coverage);
-            if (e.colour == glm::dvec3(0.0) && e.objects.none()) continue;
-            e.coverage = false;
-        }
-        staging.push_back(e);
-    }
-    swept.resize(begin);
-    swept.insert(swept.end(), staging.begin(), staging.end());
-}
-
-// Sweep: adds the tile's swept polygons into `out`, sized to the pixels their footprints reach (within
-// sweep.box, which bounds them but can be a film's worth of pixels when a fast fragment makes it large).
-void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, const ReclipScratch& scratch, TileSums& out) {
-    PixelBounds box = tile;
-    for (const SweptPolygon& p : scratch.swept) {
-        const RasterBounds b = sweptBounds(p.polygon, p.path, p.positions);
-        box.x0 = std::min(box.x0, static_cast<int>(std::floor(b.lo.x)));
-        box.y0 = std::min(box.y0, static_cast<int>(std::floor(b.lo.y)));
-        box.x1 = std::max(box.x1, static_cast<int>(std::ceil(b.hi.x)));
-        box.y1 = std::max(box.y1, static_cast<int>(std::ceil(b.hi.y)));
-    }
-    box = box.intersect(sweep.box);
-    out.reset(box);
-    const auto addObjects = [&](std::size_t i, double w, const PolygonObjects& objects) {
-        for (int k = 0; k < objects.count; ++k)
-            addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,
-                     w * objects.shares[static_cast<std::size_t>(k)].coverage);
-    };
-    // Only polygons swept over the interval's positions have coarser levels; a still one is the same at all.
-    const NestedRule rule(out.track_error ? sweep.positions : 1);
-    const auto addLevels = [&](std::size_t i, int k, double w, const glm::dvec4& value) {
-        out.d3[i] += (w * rule.to3[static_cast<std::size_t>(k)]) * value;
-    };
-    for (const SweptPolygon& p : scratch.swept) {
-        // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
-        const bool levels = out.track_error && p.positions == sweep.positions && p.positions >= 3;
-        if (!p.coverage) {
-            forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
-                if (!out.box.contains(x, y)) return;
-                out.colour[out.box.index(x, y)] += w * p.colour;
-                if (out.track_objects) addObjects(out.box.index(x, y), w, p.objects);
-                if (levels) addLevels(out.box.index(x, y), k, w, glm::dvec4(p.colour, 0.0));
-            });
-            continue;
-        }
-        forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
-            if (!out.box.contains(x, y)) return;
-            const std::size_t i = out.box.index(x, y);
-            out.colour[i] += w * p.colour;
-            if (out.track_objects) addObjects(i, w, p.objects);
-            out.covered[i] += w;
-            out.motion[i] += w * p.motion;
-            out.depth[i] += w * p.depth;
-            if (levels) addLevels(i, k, w, glm::dvec4(p.colour, 1.0));
-        });
-    }
-}
-
 // One re-clip's state across the pixels of its region.
 struct ReclipPass {
     const TileReclip& tile;
@@ -298,6 +155,8 @@ struct ShadedFragment {
 };
 
 ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
+    ++pass.stats.fragments;
+    if (fragment.source_count > 1) ++pass.stats.mixed;
     const FragmentLayers& layers = pass.tile.layers;
     ReclipScratch& scratch = pass.scratch;
     ShadedFragment shaded;
@@ -426,43 +285,61 @@ void queueSwept(ReclipPass& pass, const Fragment& fragment, const ShadedFragment
     }
 }
 
-}  // namespace
-
-void reclipSubframe(const TileReclip& tile, const ReclipTime& at, ReclipScratch& scratch, TileSums& out,
-                    ReclipStats& stats) {
+// Moves every fragment triangle that can reach the tile to the re-clip's time and resolves the pixels to
+// re-clip into non-overlapping fragments (scratch.fragments); returns those pixels: the tile, or with a
+// sweep its resolve box.
+PixelBounds resolveRegion(ReclipPass& pass) {
+    ReclipScratch& scratch = pass.scratch;
     scratch.screen.clear();
     scratch.origin.clear();
     scratch.sources.clear();
-    for (const FragmentRef ref : tile.refs) propagate(tile, at, ref, scratch, stats);
-
-    // Sweep: each screen triangle's stretch, computed when a fragment first needs it (NaN: not yet).
-    if (at.sweep) scratch.stretch.assign(scratch.screen.size(), glm::dvec4(std::numeric_limits<double>::quiet_NaN()));
-    const PixelBounds region = at.sweep ? at.sweep->resolve : tile.tile;
+    for (const FragmentRef ref : pass.tile.refs) propagate(pass.tile, pass.at, ref, scratch, pass.stats);
+    const PixelBounds region = pass.at.sweep ? pass.at.sweep->resolve : pass.tile.tile;
     resolveTile(scratch.screen, region, {}, scratch.tile, scratch.fragments);
-    if (tile.audit) auditTile(scratch.screen, scratch.fragments, stats.audit);
-    if (!at.sweep) out.reset(tile.tile);
+    if (pass.tile.audit) auditTile(scratch.screen, scratch.fragments, pass.stats.audit);
+    return region;
+}
+
+// A point re-clip: each fragment, shaded, adds to its own pixel.
+void pointRegion(ReclipPass& pass, const PixelBounds& region) {
+    pass.out.reset(pass.tile.tile);
+    for (int y = region.y0; y < region.y1; ++y)
+        for (int x = region.x0; x < region.x1; ++x)
+            for (const Fragment& fragment : pass.scratch.fragments.pixel(x, y))
+                addPoint(pass, shadeResolved(pass, fragment), pass.out.box.index(x, y), fragment.area);
+}
+
+// A sweep re-clip: each fragment, shaded, is queued with its path (a pixel's fragments merged into one
+// rectangle where they move as one, mergePixel), then all are swept into the tile's sums.
+void sweepRegion(ReclipPass& pass, const PixelBounds& region) {
+    ReclipScratch& scratch = pass.scratch;
+    // Each screen triangle's stretch, computed when a fragment first needs it (NaN: not yet).
+    scratch.stretch.assign(scratch.screen.size(), glm::dvec4(std::numeric_limits<double>::quiet_NaN()));
     scratch.swept.clear();
-    ReclipPass pass{tile, at, scratch, out, stats};
     for (int y = region.y0; y < region.y1; ++y) {
         for (int x = region.x0; x < region.x1; ++x) {
             const std::size_t pixel_begin = scratch.swept.size();
             PixelSurface surface;
-            for (const Fragment& fragment : scratch.fragments.pixel(x, y)) {
-                ++stats.fragments;
-                if (fragment.source_count > 1) ++stats.mixed;
-                const ShadedFragment shaded = shadeResolved(pass, fragment);
-                if (at.sweep)
-                    queueSwept(pass, fragment, shaded, surface);
-                else
-                    addPoint(pass, shaded, out.box.index(x, y), fragment.area);
-            }
-            if (!at.sweep) continue;
+            for (const Fragment& fragment : scratch.fragments.pixel(x, y))
+                queueSwept(pass, fragment, shadeResolved(pass, fragment), surface);
             if (surface.one) mergePixel(scratch.swept, pixel_begin, scratch.staging);
             for (std::size_t i = pixel_begin; i < scratch.swept.size(); ++i)
-                if (scratch.swept[i].coverage) stats.sweep_positions += scratch.swept[i].positions;
+                if (scratch.swept[i].coverage) pass.stats.sweep_positions += scratch.swept[i].positions;
         }
     }
-    if (at.sweep) accumulateSwept(*at.sweep, tile.tile, scratch, out);
+    accumulateSwept(*pass.at.sweep, pass.tile.tile, scratch.swept, pass.out);
+}
+
+}  // namespace
+
+void reclipSubframe(const TileReclip& tile, const ReclipTime& at, ReclipScratch& scratch, TileSums& out,
+                    ReclipStats& stats) {
+    ReclipPass pass{tile, at, scratch, out, stats};
+    const PixelBounds region = resolveRegion(pass);
+    if (at.sweep)
+        sweepRegion(pass, region);
+    else
+        pointRegion(pass, region);
 }
 
 }  // namespace clipblur

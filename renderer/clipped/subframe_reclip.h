@@ -12,6 +12,8 @@
 #include "renderer/fragments/fragment_tile.h"
 #include "renderer/geometry/swept_footprint.h"
 #include "renderer/integrate/interval_layout.h"
+#include "renderer/integrate/swept_polygons.h"
+#include "renderer/integrate/tile_sums.h"
 #include "renderer/object_coverage.h"
 #include "renderer/propagation/ode_propagation.h"
 #include "renderer/propagation/surface_path.h"
@@ -20,48 +22,6 @@
 #include "renderer/tiles.h"
 
 namespace clipblur {
-
-// One subframe's pixel values over a box of pixels (box-local, row-major), before the background is
-// added. The box is the tile, or with sweep integration the tile and the margin its fragments reach.
-struct TileSums {
-    PixelBounds box;
-    std::vector<glm::dvec3> colour;
-    std::vector<double> covered;
-    std::vector<double> depth;
-    std::vector<glm::dvec2> motion;
-    bool track_objects = false;         // set before reclipSubframe: fill `objects` (ID mattes)
-    std::vector<ObjectShares> objects;  // per object its covered area, as `covered` sums all of them
-    // Sweep: per pixel what the interval's coarser nested rule (NestedRule) differs by, Q_3h - Q_h over
-    // its positions, in colour and covered area. Filled when track_error is set.
-    bool track_error = false;
-    std::vector<glm::dvec4> d3;
-
-    void reset(const PixelBounds& box);
-};
-
-// Per px^2 of a swept polygon, what each object adds to its coverage: a fragment's sources with their
-// mix factors; a fragment merged into its pixel's rectangle (mergePixel) its difference to the
-// rectangle's, signed, as its colour is carried; nothing for a texture piece.
-struct PolygonObjects {
-    std::array<ObjectShare, 4> shares{};
-    int count = 0;
-
-    void add(int object, double amount);  // merged into an entry of the same object
-    bool none() const;                    // every entry zero: the polygon adds no coverage
-};
-
-// Sweep: one polygon to sweep and what it adds per px^2 of its footprint. Texture pieces add only their
-// colour difference (coverage false); fragments add colour, coverage, motion and depth.
-struct SweptPolygon {
-    ConvexPolygon polygon;
-    SweepPath path;
-    int positions = 1;
-    glm::dvec3 colour{0.0};
-    glm::dvec2 motion{0.0};
-    double depth = 0.0;  // 0 where unknown: adds nothing to the depth sums
-    bool coverage = true;
-    PolygonObjects objects;
-};
 
 struct ReclipScratch {
     std::vector<ScreenTriangle> screen;

@@ -1,0 +1,134 @@
+#include "renderer/integrate/swept_polygons.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "renderer/clipped/time_error.h"
+
+namespace clipblur {
+
+void PolygonObjects::add(int object, double amount) {
+    for (int k = 0; k < count; ++k) {
+        if (shares[static_cast<std::size_t>(k)].object == object) {
+            shares[static_cast<std::size_t>(k)].coverage += amount;
+            return;
+        }
+    }
+    // Two sources per fragment, minus a rectangle's two: four entries always suffice.
+    if (count == static_cast<int>(shares.size())) throw std::logic_error("PolygonObjects: more than 4 objects");
+    shares[static_cast<std::size_t>(count++)] = {object, amount};
+}
+
+bool PolygonObjects::none() const {
+    return std::all_of(shares.begin(), shares.begin() + count, [](const ObjectShare& s) { return s.coverage == 0.0; });
+}
+
+void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector<SweptPolygon>& staging) {
+    std::size_t count = 0, base = begin;
+    double area = 0.0, largest = -1.0;
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    glm::dvec2 motion(0.0);
+    double depth = 0.0;
+    for (std::size_t i = begin; i < swept.size(); ++i) {
+        const SweptPolygon& e = swept[i];
+        if (!e.coverage) continue;
+        ++count;
+        const double a = e.polygon.area();
+        area += a;
+        motion += a * e.motion;
+        depth += a * e.depth;
+        const RasterBounds b = e.polygon.bounds();
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+        if (a > largest) {
+            largest = a;
+            base = i;
+        }
+    }
+    // Non-overlapping pieces whose areas add up to their bounding box's (to rounding) fill it.
+    const double box_area = (hi.x - lo.x) * (hi.y - lo.y);
+    if (count < 2 || !(std::abs(box_area - area) <= 1e-9 * box_area)) return;
+    // One path serves the pixel only where its pieces also stretch alike (to 1%: 0.01 px over a pixel);
+    // two faces meeting at an edge do not (one turning edge-on shrinks to nothing, the other stays).
+    const SweepPath& p = swept[base].path;
+    for (std::size_t i = begin; i < swept.size(); ++i) {
+        const SweepPath& q = swept[i].path;
+        if (swept[i].coverage && (glm::any(glm::greaterThan(glm::abs(q.open_stretch - p.open_stretch), glm::dvec2(0.01))) ||
+                                  glm::any(glm::greaterThan(glm::abs(q.close_stretch - p.close_stretch), glm::dvec2(0.01)))))
+            return;
+    }
+    staging.clear();
+    SweptPolygon rectangle = swept[base];
+    rectangle.polygon.clear();
+    for (const glm::dvec2& corner : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)}) rectangle.polygon.push(corner);
+    rectangle.motion = motion / area;
+    rectangle.depth = depth / area;
+    staging.push_back(rectangle);
+    for (std::size_t i = begin; i < swept.size(); ++i) {
+        SweptPolygon e = swept[i];
+        e.path = rectangle.path;
+        e.positions = rectangle.positions;
+        if (e.coverage) {
+            if (i == base) continue;
+            e.colour -= rectangle.colour;
+            for (int k = 0; k < rectangle.objects.count; ++k)
+                e.objects.add(rectangle.objects.shares[static_cast<std::size_t>(k)].object,
+                              -rectangle.objects.shares[static_cast<std::size_t>(k)].coverage);
+            if (e.colour == glm::dvec3(0.0) && e.objects.none()) continue;
+            e.coverage = false;
+        }
+        staging.push_back(e);
+    }
+    swept.resize(begin);
+    swept.insert(swept.end(), staging.begin(), staging.end());
+}
+
+void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, std::span<const SweptPolygon> swept, TileSums& out) {
+    PixelBounds box = tile;
+    for (const SweptPolygon& p : swept) {
+        const RasterBounds b = sweptBounds(p.polygon, p.path, p.positions);
+        box.x0 = std::min(box.x0, static_cast<int>(std::floor(b.lo.x)));
+        box.y0 = std::min(box.y0, static_cast<int>(std::floor(b.lo.y)));
+        box.x1 = std::max(box.x1, static_cast<int>(std::ceil(b.hi.x)));
+        box.y1 = std::max(box.y1, static_cast<int>(std::ceil(b.hi.y)));
+    }
+    box = box.intersect(sweep.box);
+    out.reset(box);
+    const auto addObjects = [&](std::size_t i, double w, const PolygonObjects& objects) {
+        for (int k = 0; k < objects.count; ++k)
+            addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,
+                     w * objects.shares[static_cast<std::size_t>(k)].coverage);
+    };
+    // Only polygons swept over the interval's positions have coarser levels; a still one is the same at all.
+    const NestedRule rule(out.track_error ? sweep.positions : 1);
+    const auto addLevels = [&](std::size_t i, int k, double w, const glm::dvec4& value) {
+        out.d3[i] += (w * rule.to3[static_cast<std::size_t>(k)]) * value;
+    };
+    for (const SweptPolygon& p : swept) {
+        // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
+        const bool levels = out.track_error && p.positions == sweep.positions && p.positions >= 3;
+        if (!p.coverage) {
+            forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
+                if (!out.box.contains(x, y)) return;
+                out.colour[out.box.index(x, y)] += w * p.colour;
+                if (out.track_objects) addObjects(out.box.index(x, y), w, p.objects);
+                if (levels) addLevels(out.box.index(x, y), k, w, glm::dvec4(p.colour, 0.0));
+            });
+            continue;
+        }
+        forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
+            if (!out.box.contains(x, y)) return;
+            const std::size_t i = out.box.index(x, y);
+            out.colour[i] += w * p.colour;
+            if (out.track_objects) addObjects(i, w, p.objects);
+            out.covered[i] += w;
+            out.motion[i] += w * p.motion;
+            out.depth[i] += w * p.depth;
+            if (levels) addLevels(i, k, w, glm::dvec4(p.colour, 1.0));
+        });
+    }
+}
+
+}  // namespace clipblur
