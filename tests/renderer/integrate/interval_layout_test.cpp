@@ -77,4 +77,51 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
     EXPECT_EQ(positions[0], static_cast<int>(std::ceil(focal / 5.0 * 0.5)));
 }
 
+// The reach and apron rule by hand: 10 px of motion over 4 intervals gives reach 2 x 10 / 4 + 1 = 6 px
+// and an apron of ceil(6 / 2) + 1 = 4 px. A corner tile re-clips the apron outside the film on its two
+// film edges; an inner tile re-clips itself only; both reach an apron past what they re-clip.
+TEST(IntervalLayout, ReachAndApronOfCornerAndInnerTiles) {
+    const PixelBounds film = PixelBounds::corners(0, 0, 160, 90);
+    const SweepInterval corner = sweepInterval(PixelBounds::corners(0, 0, 32, 32), 10.0, 4, film);
+    EXPECT_EQ(corner.reach, 6.0);
+    EXPECT_EQ(corner.resolve, PixelBounds::corners(-4, -4, 32, 32));
+    EXPECT_EQ(corner.box, PixelBounds::corners(-8, -8, 36, 36));
+    const SweepInterval inner = sweepInterval(PixelBounds::corners(32, 32, 64, 64), 10.0, 4, film);
+    EXPECT_EQ(inner.resolve, PixelBounds::corners(32, 32, 64, 64));
+    EXPECT_EQ(inner.box, PixelBounds::corners(28, 28, 68, 68));
+    const SweepInterval last = sweepInterval(PixelBounds::corners(128, 64, 160, 90), 10.0, 4, film);
+    EXPECT_EQ(last.resolve, PixelBounds::corners(128, 64, 164, 94));
+}
+
+// A straight path from -3 to +3 px travels 6 px: swept within a reach of 6, a point sample within 5.9.
+TEST(IntervalLayout, PathTravelIsChordLengthForAStraightPath) {
+    const SweepPath path = SweepPath::through({{-3.0, 0.0}, 1.0}, {{0.0, 0.0}, 1.0}, {{3.0, 0.0}, 1.0});
+    EXPECT_DOUBLE_EQ(pathTravel(path), 6.0);
+    SweepInterval interval;
+    interval.reach = 6.0;
+    EXPECT_TRUE(interval.sweeps(path));
+    interval.reach = 5.9;
+    EXPECT_FALSE(interval.sweeps(path));
+}
+
+// A shutter curve rising linearly from 1 to 3 over [0, 1], 4 subframes at 1/8, 3/8, 5/8, 7/8: its
+// weights 1 + 2t there are 1.25, 1.75, 2.25, 2.75 against a mean of 2, and its slope over an interval
+// of 1/4 relative to the weight is 2 x 0.25 / w. A box gives factors of exactly 1 and no tilt.
+TEST(IntervalLayout, SubframeFactorsAndTiltsFollowALinearCurve) {
+    const SubframeLayout curve = subframeLayout({.t0 = 0.0, .t1 = 1.0, .curve_begin = 1.0, .curve_end = 3.0}, 4);
+    const std::vector<double> times{0.125, 0.375, 0.625, 0.875}, factors{0.625, 0.875, 1.125, 1.375};
+    ASSERT_EQ(curve.times.size(), 4u);
+    EXPECT_DOUBLE_EQ(curve.half, 0.125);
+    for (std::size_t k = 0; k < 4; ++k) {
+        EXPECT_DOUBLE_EQ(curve.times[k], times[k]);
+        EXPECT_DOUBLE_EQ(curve.factors[k], factors[k]);
+        EXPECT_DOUBLE_EQ(curve.tilts[k], 0.5 / (1.0 + 2.0 * times[k]));
+    }
+    const SubframeLayout box = subframeLayout({.t0 = 2.0, .t1 = 3.0}, 0);  // a still tile: one time, the middle
+    ASSERT_EQ(box.times.size(), 1u);
+    EXPECT_DOUBLE_EQ(box.times[0], 2.5);
+    EXPECT_EQ(box.factors[0], 1.0);
+    EXPECT_EQ(box.tilts[0], 0.0);
+}
+
 }  // namespace clipblur
