@@ -3,7 +3,9 @@
 namespace clipblur {
 
 FrameBuild::FrameBuild(const FrameMotion& motion, const FrameBuildOptions& options, const RenderCallbacks& callbacks)
-    : embree_(device_, motion, options.leave_out),
+    // Shadow rays ask at every re-clip's time, which would build every segment's scene.
+    : embree_(device_, motion, options.leave_out,
+              options.shadows ? EmbreeScene::Layout::Whole : EmbreeScene::Layout::PerSegment),
       shader_(motion, options.shadows ? &embree_ : nullptr, options.fragment_shading),
       adjacency_(motion.scene()),
       setup_{motion,

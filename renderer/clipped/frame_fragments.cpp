@@ -183,8 +183,12 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
 
     std::vector<FragmentTriangle> all;
     stats.near_clipped += frame.clippedByNearPlane();
+    std::size_t total = 0;
+    for (const TileOutput& out : outputs) total += out.triangles.size();
+    all.reserve(total);  // exactly: growing by doubling would hold up to twice the set
     for (TileOutput& out : outputs) {
         all.insert(all.end(), out.triangles.begin(), out.triangles.end());
+        std::vector<FragmentTriangle>().swap(out.triangles);
         stats.merge(out.stats);
     }
     return all;

@@ -41,12 +41,16 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
                                 const SweepLayout& layout) {
     const double t0 = layout.t0, t1 = layout.t1;
     const int count = layout.intervals;
-    std::vector<MeshPoint> vertices;
-    for (const auto* triangles : layers.triangles) {
-        if (!triangles) continue;
-        for (const FragmentTriangle& t : *triangles)
-            for (const glm::dvec3& b : t.bary) vertices.push_back({t.object, t.triangle, b});
-    }
+    // Both layers' fragment-triangle vertices, read in place: a copy as MeshPoints was 96 bytes a
+    // fragment triangle (twice that while it grew), 72 MiB at 640x360 of dense_mesh.
+    const std::size_t open_count = layers.triangles[0] ? layers.triangles[0]->size() : 0;
+    const std::size_t close_count = layers.triangles[1] ? layers.triangles[1]->size() : 0;
+    const std::size_t vertex_count = 3 * (open_count + close_count);
+    const auto vertex = [&](std::size_t i) {
+        const std::size_t t = i / 3;
+        const FragmentTriangle& f = t < open_count ? (*layers.triangles[0])[t] : (*layers.triangles[1])[t - open_count];
+        return MeshPoint{f.object, f.triangle, f.bary[i % 3]};
+    };
     std::vector<int> positions(static_cast<std::size_t>(count), 1);
     const double h = (t1 - t0) / count;
     for (int k = 0; k < count; ++k) {
@@ -54,11 +58,11 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
             end(scene, projection, t0 + (k + 1) * h);
         // The max is exact in any order, so the reduction is deterministic.
         const double extent = parallelReduce(
-            tbb::blocked_range<std::size_t>(0, vertices.size(), 4096), 0.0,
+            tbb::blocked_range<std::size_t>(0, vertex_count, 4096), 0.0,
             [&](const tbb::blocked_range<std::size_t>& range, double farthest) {
                 for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                    const ProjectedPoint a = project(begin, scene, vertices[i]), m = project(middle, scene, vertices[i]),
-                                         b = project(end, scene, vertices[i]);
+                    const MeshPoint v = vertex(i);
+                    const ProjectedPoint a = project(begin, scene, v), m = project(middle, scene, v), b = project(end, scene, v);
                     if (a.behind || m.behind || b.behind) continue;
                     const SweepPath path = SweepPath::through({a.raster, a.depth}, {m.raster, m.depth}, {b.raster, b.depth});
                     farthest = std::max(farthest, pathTravel(path));

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <malloc.h>
 #include <string>
 #include <utility>
+
+#include <tbb/task_arena.h>
 
 #include "scene/camera.h"
 #include "scene/error.h"
@@ -69,27 +72,27 @@ void checkMesh(const Object& object) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const EmbreeDevice& device, const FrameMotion& motion, const std::vector<char>* leave_out)
-    : t0_(motion.t0()), t1_(motion.t1()) {
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const FrameMotion& motion, const std::vector<char>* leave_out,
+                         Layout layout)
+    : device_(&device), t0_(motion.t0()), t1_(motion.t1()) {
     const Scene& scene = motion.scene();
     const double t0 = t0_, t1 = t1_;
     if (!(t1 >= t0)) throw Error(ExitCode::Render, "shutter window must satisfy t0 <= t1");
-    scene_.reset(rtcNewScene(device.get()));
-    device.check("creating a scene");
 
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
     const double ppu = projection.pixelsPerUnit();
     steps_.assign(scene.objects.size(), 0);
 
-    std::vector<std::vector<glm::dvec3>> steps;  // positions per time step
-    std::vector<std::vector<glm::dvec3>> mids;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const Object& object = scene.objects[o];
         if (object.mesh.triangles.empty() || (leave_out && (*leave_out)[o])) continue;
         checkMesh(object);
         const std::size_t nv = object.mesh.positions.size();
 
-        steps.assign(1, {});
+        // Double-precision positions per time step and at the segments' midpoints, scoped to the object:
+        // 24 bytes a vertex a step (hundreds of MB for a million triangles at 17 steps), gone before the
+        // BVH build below, which needs the most memory of the frame.
+        std::vector<std::vector<glm::dvec3>> steps(1), mids;
         motion.vertices(o, t0, steps[0]);
         stats_.vertex_evaluations += static_cast<long long>(nv);
         if (t1 > t0 && !motion.shutter().objectStill(o)) {
@@ -127,40 +130,96 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const FrameMotion& motion, 
         }
 
         const auto step_count = static_cast<unsigned>(steps.size());
-        GeometryHandle geometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-        if (step_count > 1) rtcSetGeometryTimeStepCount(geometry.get(), step_count);
+        Geometry geometry{.object = static_cast<int>(o), .steps = std::vector<std::vector<float>>(step_count), .indices = {}};
         std::vector<bool> bad_vertex(nv, false);
         for (unsigned s = 0; s < step_count; ++s) {
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, s,
-                                                                  RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
-            device.check("allocating vertex buffers for object '" + object.name + "'");
+            std::vector<float>& v = geometry.steps[s];
+            v.assign(3 * nv + 1, 0.0f);  // one float past the last vertex: Embree reads 16 bytes a vertex
             for (std::size_t i = 0; i < nv; ++i) {
                 for (int c = 0; c < 3; ++c) {
                     v[3 * i + c] = static_cast<float>(steps[s][i][c]);
                     if (!validCoordinate(v[3 * i + c])) bad_vertex[i] = true;
                 }
             }
+            std::vector<glm::dvec3>().swap(steps[s]);
         }
-        auto* idx = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-            geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t),
-            object.mesh.triangles.size()));
-        device.check("allocating the index buffer for object '" + object.name + "'");
+        geometry.indices.resize(3 * object.mesh.triangles.size());
         for (std::size_t t = 0; t < object.mesh.triangles.size(); ++t) {
             const auto& tri = object.mesh.triangles[t];
-            for (int c = 0; c < 3; ++c) idx[3 * t + c] = tri[c];
+            for (int c = 0; c < 3; ++c) geometry.indices[3 * t + c] = tri[c];
             if (bad_vertex[tri[0]] || bad_vertex[tri[1]] || bad_vertex[tri[2]]) ++stats_.dropped_triangles;
         }
-        rtcCommitGeometry(geometry.get());
-        const unsigned id = rtcAttachGeometry(scene_.get(), geometry.get());
-        device.check("adding object '" + object.name + "'");
-        if (object_of_geometry_.size() <= id) object_of_geometry_.resize(id + 1, -1);
-        object_of_geometry_[id] = static_cast<int>(o);
+        object_of_geometry_.push_back(static_cast<int>(o));  // geometry IDs follow the order of attachment
+        geometries_.push_back(std::move(geometry));
         steps_[o] = static_cast<int>(step_count);
         stats_.triangles += static_cast<long long>(object.mesh.triangles.size());
         stats_.max_time_steps = std::max(stats_.max_time_steps, static_cast<int>(step_count));
     }
-    rtcCommitScene(scene_.get());
-    device.check("building the acceleration structure");
+#ifdef __GLIBC__
+    // The steps were freed to the heap, whose pages glibc keeps; the build allocates its own (mmap).
+    malloc_trim(0);
+#endif
+    int moving_steps = 0;  // the moving objects' common step count; -1 when they differ
+    for (const Geometry& g : geometries_) {
+        const auto n = static_cast<int>(g.steps.size());
+        if (n > 1) moving_steps = moving_steps == 0 || moving_steps == n ? n : -1;
+    }
+    const int segments = moving_steps - 1;
+    // A triangle invalid at one step is dropped from the whole scene but would be kept in the segments
+    // that do not hold that step.
+    if (layout == Layout::PerSegment && segments > 1 && (segments & (segments - 1)) == 0 && stats_.dropped_triangles == 0) {
+        segment_count_ = segments;
+        segments_ = std::make_unique<Segment[]>(static_cast<std::size_t>(segments));
+    } else {
+        scene_ = buildScene(0, 0);
+    }
+}
+
+EmbreeScene::SceneHandle EmbreeScene::buildScene(std::size_t first, std::size_t count) const {
+    SceneHandle scene(rtcNewScene(device_->get()));
+    device_->check("creating a scene");
+    for (std::size_t id = 0; id < geometries_.size(); ++id) {
+        const Geometry& g = geometries_[id];
+        const std::size_t begin = g.steps.size() > 1 ? first : 0;
+        const std::size_t steps = g.steps.size() > 1 ? (count == 0 ? g.steps.size() : count) : 1;
+        const std::size_t nv = g.steps[0].size() / 3;
+        GeometryHandle geometry(device_->get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        if (steps > 1) rtcSetGeometryTimeStepCount(geometry.get(), static_cast<unsigned>(steps));
+        for (std::size_t s = 0; s < steps; ++s)
+            rtcSetSharedGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(s), RTC_FORMAT_FLOAT3,
+                                       g.steps[begin + s].data(), 0, 3 * sizeof(float), nv);
+        rtcSetSharedGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, g.indices.data(), 0,
+                                   3 * sizeof(std::uint32_t), g.indices.size() / 3);
+        device_->check("sharing the buffers of object " + std::to_string(g.object));
+        rtcCommitGeometry(geometry.get());
+        const unsigned attached = rtcAttachGeometry(scene.get(), geometry.get());
+        device_->check("adding object " + std::to_string(g.object));
+        if (attached != id) throw Error(ExitCode::Render, "Embree numbered a geometry out of attachment order");
+    }
+    rtcCommitScene(scene.get());
+    device_->check("building the acceleration structure");
+    return scene;
+}
+
+std::pair<RTCScene, float> EmbreeScene::sceneAt(double t) const {
+    const auto time = static_cast<float>(embreeTime(t));
+    if (segment_count_ == 0) return {scene_.get(), time};
+    // Embree's own time segment and fraction, exact in float: segment_count_ is a power of two.
+    const auto segments = static_cast<float>(segment_count_);
+    const float scaled = time * segments;
+    const float index = std::clamp(std::floor(scaled), 0.0f, segments - 1.0f);
+    const auto s = static_cast<std::size_t>(index);
+    Segment& segment = segments_[s];
+    // Isolated: while Embree's build waits for its own tasks this thread takes no other ray's task, which
+    // could ask for this segment again and wait for itself.
+    std::call_once(segment.built, [&] { tbb::this_task_arena::isolate([&] { segment.scene = buildScene(s, 2); }); });
+    return {segment.scene.get(), scaled - index};
+}
+
+int EmbreeScene::segmentScenesBuilt() const {
+    int built = 0;
+    for (int s = 0; s < segment_count_; ++s) built += segments_[static_cast<std::size_t>(s)].scene ? 1 : 0;
+    return built;
 }
 
 double EmbreeScene::embreeTime(double t) const {
@@ -180,14 +239,15 @@ EmbreeHit EmbreeScene::intersect(const glm::dvec3& origin, const glm::dvec3& dir
     rh.ray.dir_z = static_cast<float>(direction.z);
     rh.ray.tnear = 0.0f;
     rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.time = static_cast<float>(embreeTime(t));
+    const auto [scene, time] = sceneAt(t);
+    rh.ray.time = time;
     rh.ray.mask = 0xffffffffu;
     rh.ray.id = 0;
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_.get(), &context, &rh);
+    rtcIntersect1(scene, &context, &rh);
     EmbreeHit hit;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
     hit.hit = true;
@@ -213,11 +273,12 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
     ray.dir_z = static_cast<float>(direction.z);
     ray.tnear = 0.0f;
     ray.tfar = static_cast<float>(max_distance);
-    ray.time = static_cast<float>(embreeTime(t));
+    const auto [scene, time] = sceneAt(t);
+    ray.time = time;
     ray.mask = 0xffffffffu;
     ray.id = 0;
     ray.flags = 0;
-    rtcOccluded1(scene_.get(), &context, &ray);
+    rtcOccluded1(scene, &context, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 

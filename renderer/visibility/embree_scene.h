@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -43,13 +45,25 @@ struct EmbreeSceneStats {
 // midpoint deviation of every vertex, projected to the image at the midpoint time, is below 0.1 px.
 // The deviation of an arc from its chord is largest at the middle, so this is the chord error.
 //
+// Layout::PerSegment trades that one BVH over every step for one per pair of adjacent steps, built when
+// a ray first asks for a time in it: a BVH over 16 time segments of a million triangles takes about
+// 1 GB to keep and 1.7 GB to build (temporal splits), one over a segment about a tenth of that, and a
+// frame's fragment sets ask for two or three times. A ray at time tau meets the same vertices either way:
+// Embree's time segment and fraction (its getTimeSegment: tau x segments, floor, clamp) are exact in
+// float for a power-of-two segment count, and a one-segment scene given that fraction uses it unchanged.
+// Only the order in which the two BVHs visit triangles differs, which decides nothing but exact ties.
+// It applies when every moving object has the same step count (else one scene holds all the steps), and
+// suits few distinct ray times: rays at every time (shadows, stochastic) would build every segment's.
+//
 // The EmbreeDevice must outlive the scene: its error callback records into the device object.
 class EmbreeScene {
 public:
     static constexpr double kMaxChordErrorPixels = 0.1;
+    enum class Layout { Whole, PerSegment };
 
     // `leave_out` (per object, optional): objects not to add, such as a still backdrop rendered on its own.
-    EmbreeScene(const EmbreeDevice& device, const FrameMotion& motion, const std::vector<char>* leave_out = nullptr);
+    EmbreeScene(const EmbreeDevice& device, const FrameMotion& motion, const std::vector<char>* leave_out = nullptr,
+                Layout layout = Layout::Whole);
     EmbreeScene(EmbreeScene&& other) noexcept = default;
     EmbreeScene& operator=(EmbreeScene&& other) noexcept = default;
     EmbreeScene(const EmbreeScene&) = delete;
@@ -67,14 +81,38 @@ public:
     double t1() const { return t1_; }
     int timeSteps(int object) const { return steps_[static_cast<std::size_t>(object)]; }
     const EmbreeSceneStats& stats() const { return stats_; }
+    // Segment scenes built so far (Layout::PerSegment; 0 otherwise).
+    int segmentScenesBuilt() const;
+    // The scene holding every time step (Layout::Whole).
     RTCScene get() const { return scene_.get(); }
 
 private:
     struct SceneRelease {
         void operator()(RTCScene scene) const { rtcReleaseScene(scene); }
     };
-    // Owned from the first line of the constructor, so a constructor that throws still releases it.
-    std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
+    using SceneHandle = std::unique_ptr<RTCSceneTy, SceneRelease>;
+    // One object's vertex positions per time step (float xyz, padded for Embree's 16-byte loads) and its
+    // triangles, shared with every scene built from them.
+    struct Geometry {
+        int object = -1;
+        std::vector<std::vector<float>> steps;
+        std::vector<std::uint32_t> indices;
+    };
+    struct Segment {
+        std::once_flag built;
+        SceneHandle scene;
+    };
+    // A scene of steps [first, first + count) of the moving objects (the still ones have one); count 0:
+    // every object's own steps.
+    SceneHandle buildScene(std::size_t first, std::size_t count) const;
+    // The scene and Embree ray time for absolute time t.
+    std::pair<RTCScene, float> sceneAt(double t) const;
+
+    const EmbreeDevice* device_ = nullptr;
+    std::vector<Geometry> geometries_;
+    SceneHandle scene_;  // Layout::Whole
+    int segment_count_ = 0;  // Layout::PerSegment: the moving objects' common step count - 1; else 0
+    std::unique_ptr<Segment[]> segments_;
     double t0_ = 0.0;
     double t1_ = 0.0;
     std::vector<int> object_of_geometry_;  // geomID -> object index

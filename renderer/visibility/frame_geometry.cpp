@@ -84,16 +84,21 @@ FrameGeometry::FrameGeometry(const FrameMotion& motion, const Projection& projec
     }
 }
 
+namespace {
+
+const std::array<glm::dvec3, 3> kCorners{glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)};
+
+}  // namespace
+
 void FrameGeometry::addTriangle(std::uint32_t object, std::uint32_t triangle, const std::array<glm::dvec3, 3>& world,
                                 const Projection& projection) {
-    static const std::array<glm::dvec3, 3> corners{glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)};
     bool all_front = true;
     for (const auto& p : world) all_front = all_front && glm::dot(camera_.e3, p - camera_.position) >= kNearDepth;
     if (all_front) {
-        emit(object, triangle, world, corners, projection);
+        emit(object, triangle, world, kCorners, projection);
         return;
     }
-    const NearClipped c = clipToNearPlane(camera_, kNearDepth, world, corners);
+    const NearClipped c = clipToNearPlane(camera_, kNearDepth, world, kCorners);
     const int n = c.count;
     const auto& w = c.world;
     const auto& b = c.bary;
@@ -115,11 +120,22 @@ void FrameGeometry::emit(std::uint32_t object, std::uint32_t triangle, const std
     s.source = static_cast<std::uint32_t>(triangles_.size());
     mesh_items_.push_back(s.source);
     triangles_.push_back(s);
-    sources_.push_back({object, triangle, bary});
+    mesh_triangle_.push_back({object, triangle});
+    if (bary != kCorners) {
+        clipped_.push_back(s.source);
+        clipped_bary_.push_back(bary);
+    }
     // Inradius = area / half-perimeter = |cross| / perimeter.
     const double perimeter = glm::distance(s.raster[0], s.raster[1]) + glm::distance(s.raster[1], s.raster[2]) +
                              glm::distance(s.raster[2], s.raster[0]);
     inner_diameter_.push_back(2.0 * std::abs(orient2d(s.raster[0], s.raster[1], s.raster[2])) / perimeter);
+}
+
+SourceTriangle FrameGeometry::source(std::uint32_t screen_triangle) const {
+    const auto& [object, triangle] = mesh_triangle_[screen_triangle];
+    const auto c = std::lower_bound(clipped_.begin(), clipped_.end(), screen_triangle);
+    if (c == clipped_.end() || *c != screen_triangle) return {object, triangle, kCorners};
+    return {object, triangle, clipped_bary_[static_cast<std::size_t>(c - clipped_.begin())]};
 }
 
 std::span<const std::uint32_t> FrameGeometry::tileTriangles(int tile) const {

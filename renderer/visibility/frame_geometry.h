@@ -39,7 +39,7 @@ public:
     PixelBounds tile(int index) const { return grid_.tile(index); }
     const CameraFrame& camera() const { return camera_; }
     std::span<const ScreenTriangle> triangles() const { return triangles_; }
-    const SourceTriangle& source(std::uint32_t screen_triangle) const { return sources_[screen_triangle]; }
+    SourceTriangle source(std::uint32_t screen_triangle) const;
     // Screen triangles of the tile, in increasing index order.
     std::span<const std::uint32_t> tileTriangles(int tile) const;
     // Screen triangles made from mesh triangle `triangle` of `object` (0, 1 or 2 after near clipping).
@@ -62,7 +62,11 @@ private:
     TileGrid grid_;
     CameraFrame camera_;
     std::vector<ScreenTriangle> triangles_;
-    std::vector<SourceTriangle> sources_;
+    // Per screen triangle its mesh triangle (object, triangle); the barycentrics only of the near-clipped
+    // parts (screen index ascending), the rest being the whole triangle: 72 bytes a triangle saved.
+    std::vector<std::array<std::uint32_t, 2>> mesh_triangle_;
+    std::vector<std::uint32_t> clipped_;
+    std::vector<std::array<glm::dvec3, 3>> clipped_bary_;
     std::vector<double> inner_diameter_;
     std::vector<std::uint32_t> object_base_;        // first global mesh-triangle id of each object
     std::vector<std::uint32_t> mesh_offsets_;       // CSR: global mesh triangle -> screen triangles

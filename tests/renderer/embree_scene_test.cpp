@@ -142,4 +142,96 @@ TEST(EmbreeScene, BadIndexIsASceneError) {
     }
 }
 
+namespace {
+
+// A quad spun 90 degrees about the view axis (17 time steps, 16 segments at 256 px, as above) beside a
+// sliding one, meshed finely so rays meet shared edges and vertices.
+RenderJob spinningGridJob() {
+    RenderJob job = test::squareFilmJob(256);
+    Object spin;
+    spin.name = "spin";
+    constexpr std::uint32_t n = 8;
+    for (std::uint32_t j = 0; j <= n; ++j)
+        for (std::uint32_t i = 0; i <= n; ++i) spin.mesh.positions.push_back({-1.0 + 2.0 * i / n, -1.0 + 2.0 * j / n, 0.0});
+    for (std::uint32_t j = 0; j < n; ++j)
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const std::uint32_t a = j * (n + 1) + i;
+            spin.mesh.triangles.push_back({a, a + 1, a + n + 2});
+            spin.mesh.triangles.push_back({a, a + n + 2, a + n + 1});
+        }
+    spin.transform = {TransformKey{0.0, glm::dvec3(0, 0, 5)},
+                      TransformKey{1.0, glm::dvec3(0, 0, 5), glm::angleAxis(M_PI / 2, glm::dvec3(0, 0, 1))}};
+    job.scene.objects.push_back(spin);
+    return job;
+}
+
+}  // namespace
+
+// Per-segment scenes must answer every ray as the scene of all steps does: same hit or miss, same float
+// distance, and the same triangle with the same barycentrics and normal, except in an exact tie, a ray
+// through an edge two triangles share, where the BVHs' visiting orders may pick either triangle.
+TEST(EmbreeScene, SegmentScenesAnswerAsTheWholeScene) {
+    const RenderJob job = spinningGridJob();
+    const EmbreeDevice device;
+    const FrameMotion motion(job.scene, 0.0, 1.0);
+    const EmbreeScene whole(device, motion);
+    const EmbreeScene segmented(device, motion, nullptr, EmbreeScene::Layout::PerSegment);
+    ASSERT_EQ(segmented.timeSteps(0), 17);
+    // Within 1e-6 of an edge in barycentrics: float hits on an edge land within a few ulps of it.
+    const auto onEdge = [](const EmbreeHit& h) { return h.u < 1e-6 || h.v < 1e-6 || h.u + h.v > 1.0 - 1e-6; };
+    long long hits = 0, ties = 0;
+    for (int k = 0; k <= 64; ++k) {
+        const double t = k / 64.0 + (k % 3 == 1 ? 1e-7 : 0.0);  // segment ends (k % 4 == 0) and between
+        for (int y = 0; y < 256; y += 5) {
+            for (int x = 0; x < 256; x += 5) {
+                const glm::dvec3 dir = test::worldAtRaster(x + 0.5, y + 0.5, 1.0, 256);
+                const EmbreeHit a = whole.intersect(glm::dvec3(0.0), dir, t), b = segmented.intersect(glm::dvec3(0.0), dir, t);
+                ASSERT_EQ(a.hit, b.hit) << "t " << t << " at " << x << "," << y;
+                EXPECT_EQ(whole.occluded(glm::dvec3(0.0), dir, 100.0, t), segmented.occluded(glm::dvec3(0.0), dir, 100.0, t));
+                if (!a.hit) continue;
+                ++hits;
+                EXPECT_EQ(a.distance, b.distance);
+                if (a.triangle != b.triangle) {
+                    ++ties;
+                    EXPECT_TRUE(onEdge(a) && onEdge(b)) << "t " << t << " at " << x << "," << y;
+                    continue;
+                }
+                EXPECT_EQ(a.u, b.u);
+                EXPECT_EQ(a.v, b.v);
+                EXPECT_EQ(a.normal, b.normal);
+            }
+        }
+    }
+    EXPECT_GT(hits, 1000);  // the quad covers a few percent of the rays at every time
+    EXPECT_LT(ties, hits / 100);
+    EXPECT_EQ(segmented.segmentScenesBuilt(), 16);
+}
+
+// A frame's fragment sets ask at the shutter's ends: only those two segments are built.
+TEST(EmbreeScene, SegmentScenesAreBuiltWhenFirstAsked) {
+    const RenderJob job = spinningGridJob();
+    const EmbreeDevice device;
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0), nullptr, EmbreeScene::Layout::PerSegment);
+    EXPECT_EQ(scene.segmentScenesBuilt(), 0);
+    EXPECT_EQ(scene.get(), nullptr);
+    EXPECT_TRUE(scene.intersect(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), 0.0).hit);
+    EXPECT_TRUE(scene.intersect(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), 1.0).hit);
+    EXPECT_TRUE(scene.intersect(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), 0.99).hit);  // the last segment again
+    EXPECT_EQ(scene.segmentScenesBuilt(), 2);
+}
+
+// Moving objects with different step counts cut the shutter differently: one scene holds every step.
+TEST(EmbreeScene, UnequalStepCountsKeepOneScene) {
+    RenderJob job = spinningGridJob();
+    Object slide = test::rasterQuad(10, 10, 30, 30, 5.0, 256);
+    slide.transform = {TransformKey{0.0, glm::dvec3(0.0)}, TransformKey{1.0, glm::dvec3(0.1, 0.0, 0.0)}};
+    job.scene.objects.push_back(slide);
+    const EmbreeDevice device;
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0), nullptr, EmbreeScene::Layout::PerSegment);
+    ASSERT_EQ(scene.timeSteps(1), 2);
+    EXPECT_NE(scene.get(), nullptr);
+    EXPECT_TRUE(scene.intersect(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), 0.5).hit);
+    EXPECT_EQ(scene.segmentScenesBuilt(), 0);
+}
+
 }  // namespace clipblur
