@@ -27,6 +27,11 @@ RenderJob pilotJob(const RenderJob& job, double spacing, int subframes) {
     return pilot;
 }
 
+// Whether two renders of one frame did the same integration work: re-clips and sweep positions.
+bool sameWork(const ClippedStats& x, const ClippedStats& y) {
+    return x.subframes_total == y.subframes_total && x.reclip.sweep_positions == y.reclip.sweep_positions;
+}
+
 }  // namespace
 
 double rmsDifference(const Image& fine, const Image& image) {
@@ -97,18 +102,23 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     RenderResult result = renderClipped(final_job, frame, callbacks);
     ++renders;
     double reached = errorOf(final_job, result);
+    ClippedStats previous = pilot.stats.clipped();
     // Corrections where the model missed by more than 4/3: the order measured between the pilot and this
     // render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
     // than the pilot (renders are dear there), two where it is measured against it (they are cheap).
+    // None where this render did the work of the one before it (the same re-clips and sweep positions):
+    // the setting no longer sets the work there, as where re-clips leave one position per interval, so
+    // another render could only repeat it.
     for (int k = 0; k < (measured(final_job) ? 2 : 1); ++k) {
         const double interval = intervalOf(final_job);
         if (!(reached > 0.0 && estimate > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
-            std::abs(std::log(interval / pilot_interval)) <= 1e-6)
+            std::abs(std::log(interval / pilot_interval)) <= 1e-6 || sameWork(previous, result.stats.clipped()))
             break;
         const double order = std::clamp(std::log(reached / estimate) / std::log(interval / pilot_interval), 1.0, 3.0);
         const RenderJob corrected = jobAt(interval * std::pow(target / reached, 1.0 / order));
         if (intervalOf(corrected) == interval) break;
         final_job = corrected;
+        previous = result.stats.clipped();
         result = renderClipped(final_job, frame, callbacks);
         ++renders;
         reached = errorOf(final_job, result);
