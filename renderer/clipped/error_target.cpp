@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "renderer/clipped/clipped_renderer.h"
 #include "renderer/stopwatch.h"
@@ -14,6 +15,7 @@ constexpr double kPilotSpacing = 1.0;  // px: where the estimate's order 2 holds
 constexpr int kPilotSubframes = 27;    // point subframes: 9 groups of three per segment-free shutter
 constexpr double kMinSpacing = 0.01, kMaxSpacing = 1000.0;  // render.sweep_spacing's range
 constexpr double kMeasuredRatio = 1.5;  // a render this much coarser than the pilot is measured against it
+constexpr double kProbeRatio = 4.0;     // a sweep pilot with no estimate is compared with a render this coarser
 
 // The pilot's job: the whole film, the given setting.
 RenderJob pilotJob(const RenderJob& job, double spacing, int subframes) {
@@ -30,6 +32,76 @@ RenderJob pilotJob(const RenderJob& job, double spacing, int subframes) {
 // Whether two renders of one frame did the same integration work: re-clips and sweep positions.
 bool sameWork(const ClippedStats& x, const ClippedStats& y) {
     return x.subframes_total == y.subframes_total && x.reclip.sweep_positions == y.reclip.sweep_positions;
+}
+
+// What the target tunes: sweep and auto the spacing in pixels (auto spaces its point subframes by it
+// too), point subframes the count; both as an interval between samples (pixels, or the shutter over the
+// subframes).
+struct Tuning {
+    const RenderJob& job;
+    bool sweep = true;
+
+    double intervalOf(const RenderJob& j) const { return sweep ? j.render.sweep_spacing : 1.0 / j.render.subframes; }
+    RenderJob at(double interval) const {
+        RenderJob out = job;
+        out.render.error_target = 0.0;
+        if (sweep)
+            out.render.sweep_spacing = std::clamp(interval, kMinSpacing, kMaxSpacing);
+        else
+            out.render.subframes = std::clamp(static_cast<int>(std::ceil(1.0 / interval - 1e-9)), 1, job.render.max_subframes);
+        return out;
+    }
+};
+
+// The pilot and where the error model is anchored: an error known at an interval (the pilot's own
+// estimate, or a coarser probe's measured difference from the pilot).
+struct Pilot {
+    RenderResult render;  // what renders well coarser are judged against
+    double interval = 0.0, estimate = 0.0;
+    double anchor_interval = 0.0, anchor_error = 0.0;
+    int renders = 0;
+    std::optional<RenderResult> answer;  // a probe that is already the result
+};
+
+// A sweep pilot with no estimate (every interval has fewer than 3 positions) against a render kProbeRatio
+// coarser, the pilot the finer solution. Where both did the same work the spacing does not set the work
+// (re-clips leave one position per interval) and the probe is the answer. Else their RMS difference
+// anchors the model at the probe when the target's interval can be judged against the pilot; returns
+// false where it is finer than that, so the pilot is refined instead.
+bool probeCoarser(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Pilot& pilot) {
+    const RenderJob job = tuning.at(pilot.interval * kProbeRatio);
+    RenderResult probe = renderClipped(job, frame, quiet);
+    ++pilot.renders;
+    const double difference = rmsDifference(pilot.render.image, probe.image);
+    pilot.anchor_interval = tuning.intervalOf(job);
+    pilot.anchor_error = difference;
+    if (sameWork(pilot.render.stats.clipped(), probe.stats.clipped())) {
+        pilot.answer = std::move(probe);
+        return true;
+    }
+    return difference > 0.0 &&
+           spacingForTarget(pilot.anchor_interval, difference, tuning.job.render.error_target) >= kMeasuredRatio * pilot.interval;
+}
+
+// The pilot at kPilotSpacing (or kPilotSubframes); where it has no estimate, a sweep pilot is first
+// probed coarser, then (as point subframes are) refined 4x, at most twice, until it has one.
+Pilot runPilot(const Tuning& tuning, int frame, const RenderCallbacks& quiet) {
+    Pilot pilot;
+    double spacing = kPilotSpacing;
+    int subframes = std::min(kPilotSubframes, tuning.job.render.max_subframes);
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        pilot.render = renderClipped(pilotJob(tuning.job, spacing, subframes), frame, quiet);
+        ++pilot.renders;
+        pilot.interval = tuning.sweep ? spacing : 1.0 / subframes;
+        pilot.estimate = pilot.render.stats.clipped().estimated_error;
+        pilot.anchor_interval = pilot.interval;
+        pilot.anchor_error = pilot.estimate;
+        if (pilot.estimate > 0.0 || attempt == 2) break;
+        if (tuning.sweep && attempt == 0 && probeCoarser(tuning, frame, quiet, pilot)) break;
+        spacing = std::max(kMinSpacing, spacing / 4.0);
+        subframes = std::min(tuning.job.render.max_subframes, subframes * 4);
+    }
+    return pilot;
 }
 
 }  // namespace
@@ -60,63 +132,45 @@ double spacingForTarget(double setting, double estimate, double target) {
 
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     const auto start = Clock::now();
-    // Sweep and auto are tuned by the spacing (auto spaces point subframes by it too).
-    const bool sweep = job.render.time_integration != TimeIntegration::Subframes;
-    const RenderCallbacks quiet{nullptr, callbacks.cancel};
-    double spacing = kPilotSpacing;
-    int subframes = std::min(kPilotSubframes, job.render.max_subframes);
-    RenderResult pilot;
-    double estimate = 0.0;
-    int renders = 0;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-        pilot = renderClipped(pilotJob(job, spacing, subframes), frame, quiet);
-        ++renders;
-        estimate = pilot.stats.clipped().estimated_error;
-        if (estimate > 0.0 || attempt == 2) break;
-        spacing = std::max(kMinSpacing, spacing / 4.0);
-        subframes = std::min(job.render.max_subframes, subframes * 4);
-    }
+    const Tuning tuning{job, job.render.time_integration != TimeIntegration::Subframes};
+    Pilot pilot = runPilot(tuning, frame, {nullptr, callbacks.cancel});
     const double pilot_seconds = secondsSince(start);
     const double target = job.render.error_target;
-    // The setting as an interval between samples: pixels of spacing, or the shutter over the subframes.
-    const double pilot_interval = sweep ? spacing : 1.0 / subframes;
-    const auto jobAt = [&](double interval) {
-        RenderJob out = job;
-        out.render.error_target = 0.0;
-        if (sweep)
-            out.render.sweep_spacing = std::clamp(interval, kMinSpacing, kMaxSpacing);
-        else
-            out.render.subframes = std::clamp(static_cast<int>(std::ceil(1.0 / interval - 1e-9)), 1, job.render.max_subframes);
-        return out;
-    };
-    const auto intervalOf = [&](const RenderJob& j) { return sweep ? j.render.sweep_spacing : 1.0 / j.render.subframes; };
-    const auto measured = [&](const RenderJob& j) { return intervalOf(j) >= kMeasuredRatio * pilot_interval; };
+    const auto measured = [&](const RenderJob& j) { return tuning.intervalOf(j) >= kMeasuredRatio * pilot.interval; };
     // A render coarser than the pilot is judged against the pilot image: the two error fields are nearly
     // independent, so the difference is sqrt(e^2 + e_pilot^2), within 1.2x of the render's own e when the
     // pilot's is under 2/3 of it (order >= 1 at 1.5x the interval). Its own estimate falls 1.3-3x short
     // at coarse intervals (docs/performance.md). Error both share (sweep's re-clips) is not seen.
     const auto errorOf = [&](const RenderJob& j, const RenderResult& r) {
-        return measured(j) ? rmsDifference(pilot.image, r.image) : r.stats.clipped().estimated_error;
+        return measured(j) ? rmsDifference(pilot.render.image, r.image) : r.stats.clipped().estimated_error;
     };
-    RenderJob final_job = jobAt(spacingForTarget(pilot_interval, estimate, target));
-    RenderResult result = renderClipped(final_job, frame, callbacks);
-    ++renders;
-    double reached = errorOf(final_job, result);
-    ClippedStats previous = pilot.stats.clipped();
-    // Corrections where the model missed by more than 4/3: the order measured between the pilot and this
+    RenderJob final_job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target));
+    int renders = pilot.renders;
+    RenderResult result;
+    double reached = pilot.anchor_error;
+    if (pilot.answer) {
+        final_job = tuning.at(pilot.anchor_interval);
+        result = std::move(*pilot.answer);
+    } else {
+        result = renderClipped(final_job, frame, callbacks);
+        ++renders;
+        reached = errorOf(final_job, result);
+    }
+    ClippedStats previous = pilot.render.stats.clipped();
+    // Corrections where the model missed by more than 4/3: the order measured between the anchor and this
     // render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
     // than the pilot (renders are dear there), two where it is measured against it (they are cheap).
     // None where this render did the work of the one before it (the same re-clips and sweep positions):
     // the setting no longer sets the work there, as where re-clips leave one position per interval, so
     // another render could only repeat it.
-    for (int k = 0; k < (measured(final_job) ? 2 : 1); ++k) {
-        const double interval = intervalOf(final_job);
-        if (!(reached > 0.0 && estimate > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
-            std::abs(std::log(interval / pilot_interval)) <= 1e-6 || sameWork(previous, result.stats.clipped()))
+    for (int k = 0; k < (measured(final_job) ? 2 : 1) && !pilot.answer; ++k) {
+        const double interval = tuning.intervalOf(final_job);
+        if (!(reached > 0.0 && pilot.anchor_error > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
+            std::abs(std::log(interval / pilot.anchor_interval)) <= 1e-6 || sameWork(previous, result.stats.clipped()))
             break;
-        const double order = std::clamp(std::log(reached / estimate) / std::log(interval / pilot_interval), 1.0, 3.0);
-        const RenderJob corrected = jobAt(interval * std::pow(target / reached, 1.0 / order));
-        if (intervalOf(corrected) == interval) break;
+        const double order = std::clamp(std::log(reached / pilot.anchor_error) / std::log(interval / pilot.anchor_interval), 1.0, 3.0);
+        const RenderJob corrected = tuning.at(interval * std::pow(target / reached, 1.0 / order));
+        if (tuning.intervalOf(corrected) == interval) break;
         final_job = corrected;
         previous = result.stats.clipped();
         result = renderClipped(final_job, frame, callbacks);
@@ -124,12 +178,12 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
         reached = errorOf(final_job, result);
     }
     ClippedStats& stats = std::get<ClippedStats>(result.stats.method);
-    stats.target = ErrorTargetStats{.error_target = job.render.error_target,
-                                    .pilot_estimated_error = estimate,
+    stats.target = ErrorTargetStats{.error_target = target,
+                                    .pilot_estimated_error = pilot.estimate,
                                     .pilot_seconds = pilot_seconds,
                                     .renders = renders,
-                                    .sweep_spacing = sweep ? final_job.render.sweep_spacing : 0.0,
-                                    .subframes = sweep ? 0 : final_job.render.subframes,
+                                    .sweep_spacing = tuning.sweep ? final_job.render.sweep_spacing : 0.0,
+                                    .subframes = tuning.sweep ? 0 : final_job.render.subframes,
                                     .reached_error = reached,
                                     .against_pilot = measured(final_job)};
     return result;

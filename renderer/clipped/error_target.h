@@ -10,8 +10,11 @@ namespace clipblur {
 // reaches the target:
 //     setting x (target / e0)^(1/p),  p = 2 finer than the pilot, p = 1 coarser,
 // since positions closer than a pixel leave kinks (midpoint rule, h^2) and positions farther apart leave
-// a pixel's value nearly a step (h). Where the pilot estimates 0 (fewer than 3 samples), the pilot is
-// refined 4x, at most twice, before its setting is kept. Where the render's own estimate then misses the
+// a pixel's value nearly a step (h). Where a sweep pilot estimates 0 (fewer than 3 positions in every
+// interval), a render 4x coarser is measured against it: where both did the same work that render is the
+// answer, else their difference anchors the model at its interval. Where that cannot serve (a target finer
+// than the pilot can judge, or point subframes), the pilot is refined 4x, at most twice, until it has an
+// estimate, and its setting is kept if it never does. Where the render's own estimate then misses the
 // target by more than 4/3, the order measured between pilot and render corrects it once (one more
 // render). A render at an interval at least 1.5x the pilot's is judged instead by its RMS difference from
 // the pilot image (the pilot is the finer solution) and corrected up to twice. The re-clip error that

@@ -150,4 +150,22 @@ TEST(ErrorTarget, CoarseTargetsAreMeasuredAgainstThePilot) {
     }
 }
 
+// A quad moving under a pixel over the shutter: one sweep position per interval at the pilot's 1 px, so
+// the pilot has no estimate, and a render 4x coarser does the same work. That render is the answer: two
+// renders in all (no refined pilot), and the bits of a plain render at the default spacing.
+TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.render.time_integration = TimeIntegration::Sweep;
+    job.scene.objects.push_back(movingQuad(kX0, kY0, kX1, kY1, 6.0, glm::dvec2(0.6, 0.3)));
+    const RenderResult plain = renderFrame(job, 0);
+    ASSERT_EQ(plain.stats.clipped().estimated_error, 0.0) << "the scene must leave the pilot without an estimate";
+    job.render.error_target = 1e-2;
+    const RenderResult r = renderFrame(job, 0);
+    const ErrorTargetStats& stats = *r.stats.clipped().target;
+    EXPECT_EQ(stats.renders, 2);
+    EXPECT_EQ(stats.sweep_spacing, 4.0);
+    for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
+}
+
 }  // namespace clipblur
