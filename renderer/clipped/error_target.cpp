@@ -42,8 +42,10 @@ struct Tuning {
     bool sweep = true;
 
     double intervalOf(const RenderJob& j) const { return sweep ? j.render.sweep_spacing : 1.0 / j.render.subframes; }
+    // The whole film at `interval`: every choice is made on whole-film renders, so shards choose alike.
     RenderJob at(double interval) const {
         RenderJob out = job;
+        out.render.window.reset();
         out.render.error_target = 0.0;
         if (sweep)
             out.render.sweep_spacing = std::clamp(interval, kMinSpacing, kMaxSpacing);
@@ -133,7 +135,10 @@ double spacingForTarget(double setting, double estimate, double target) {
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
     const auto start = Clock::now();
     const Tuning tuning{job, job.render.time_integration != TimeIntegration::Subframes};
-    Pilot pilot = runPilot(tuning, frame, {nullptr, callbacks.cancel});
+    const RenderCallbacks quiet{nullptr, callbacks.cancel};
+    // A shard's progress is its own window's render at the chosen setting, made last.
+    const RenderCallbacks& shown = job.render.window ? quiet : callbacks;
+    Pilot pilot = runPilot(tuning, frame, quiet);
     const double pilot_seconds = secondsSince(start);
     const double target = job.render.error_target;
     const auto measured = [&](const RenderJob& j) { return tuning.intervalOf(j) >= kMeasuredRatio * pilot.interval; };
@@ -152,7 +157,7 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
         final_job = tuning.at(pilot.anchor_interval);
         result = std::move(*pilot.answer);
     } else {
-        result = renderClipped(final_job, frame, callbacks);
+        result = renderClipped(final_job, frame, shown);
         ++renders;
         reached = errorOf(final_job, result);
     }
@@ -173,9 +178,15 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
         if (tuning.intervalOf(corrected) == interval) break;
         final_job = corrected;
         previous = result.stats.clipped();
-        result = renderClipped(final_job, frame, callbacks);
+        result = renderClipped(final_job, frame, shown);
         ++renders;
         reached = errorOf(final_job, result);
+    }
+    if (job.render.window) {
+        RenderJob shard = final_job;
+        shard.render.window = job.render.window;
+        result = renderClipped(shard, frame, callbacks);
+        ++renders;
     }
     ClippedStats& stats = std::get<ClippedStats>(result.stats.method);
     stats.target = ErrorTargetStats{.error_target = target,

@@ -17,8 +17,9 @@ namespace clipblur {
 // estimate, and its setting is kept if it never does. Where the render's own estimate then misses the
 // target by more than 4/3, the order measured between pilot and render corrects it once (one more
 // render). A render at an interval at least 1.5x the pilot's is judged instead by its RMS difference from
-// the pilot image (the pilot is the finer solution) and corrected up to twice. The re-clip error that
-// sweep's pilot and render share is not targeted.
+// the pilot image (the pilot is the finer solution) and corrected up to twice. Every render that chooses is
+// of the whole film, so every shard of a frame chooses alike; a shard then renders its window at the
+// chosen setting. The re-clip error that sweep's pilot and render share is not targeted.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval

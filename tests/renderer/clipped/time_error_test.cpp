@@ -168,4 +168,29 @@ TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
     for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
 }
 
+// Shards of one frame choose one setting: every render that chooses is of the whole film. A window over
+// the quad and one beside it (nothing there, so its own error would be 0) must both get the whole film's
+// spacing, and their pixels the whole film's bits. The target is one the quad's first render misses, so
+// the choice is corrected by renders measured against the pilot.
+TEST(ErrorTarget, ShardsOfAFrameChooseAlike) {
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.render.time_integration = TimeIntegration::Sweep;
+    job.render.max_subframes = 1024;
+    job.render.error_target = 2e-2;
+    job.scene.objects.push_back(movingQuad(kX0, kY0, kX1, kY1, 6.0, kVelocity));
+    const RenderResult whole = renderFrame(job, 0);
+    const double spacing = whole.stats.clipped().target->sweep_spacing;
+    for (const PixelBounds window : {PixelBounds::sized(0, 0, 32, 24), PixelBounds::sized(0, 26, 32, 6)}) {
+        job.render.window = window;
+        const RenderResult shard = renderFrame(job, 0);
+        EXPECT_EQ(shard.stats.clipped().target->sweep_spacing, spacing) << window.y0;
+        const Image::Channel& a = *whole.image.find("R");
+        const Image::Channel& b = *shard.image.find("R");
+        for (int y = window.y0; y < window.y1; ++y)
+            for (int x = window.x0; x < window.x1; ++x)
+                ASSERT_EQ(b.values[shard.image.index(x, y)], a.values[whole.image.index(x, y)]) << x << ", " << y;
+    }
+}
+
 }  // namespace clipblur
