@@ -13,6 +13,10 @@ namespace clipblur {
 enum class Method { Clipped, Stochastic, Accumulation, Frame0Only };
 enum class PathMethod { Exact, Euler, RK4 };
 enum class TimeIntegration { Subframes, Sweep, Auto };
+// How sweep integrates time between re-clips: Points places each fragment at positions sweep_spacing
+// pixels of travel apart; Exact integrates its coverage exactly along chords through positions spaced by
+// how far paths bend (renderer/geometry/chord_sweep.h).
+enum class SweepTime { Points, Exact };
 // How a clipped fragment piece gets its one colour: shaded at its area centroid with an image texture
 // filtered over the whole piece (Centroid), or cut into a fan of triangles about the centroid, each shaded
 // that way, their colours averaged by area (Fan: as many shading points as the piece has vertices), or
@@ -61,6 +65,7 @@ struct RenderSettings {
     // vertices sweep_spacing pixels apart; renderer/clipped/integration_cost.h).
     TimeIntegration time_integration = TimeIntegration::Auto;
     double sweep_spacing = 1.0;
+    SweepTime sweep_time = SweepTime::Points;
     // Clipped: the RMS time-sampling error (R, G, B, white = 1) to aim for; 0: off. A pilot render
     // measures estimated_error and the spacing (sweep, auto) or subframe count (subframes) is chosen from it
     // (renderer/clipped/error_target.h).

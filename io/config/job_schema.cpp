@@ -360,6 +360,8 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
             static_cast<TimeIntegration>(asChoice(*t, "render.time_integration", {"subframes", "sweep", "auto"}));
     const bool spacing_given = map.has("sweep_spacing");
     r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
+    if (const ConfigNode* t = map.optional("sweep_time"))
+        r.sweep_time = static_cast<SweepTime>(asChoice(*t, "render.sweep_time", {"points", "exact"}));
     if (const ConfigNode* e = map.optional("error_target")) {
         r.error_target = asNumber(*e, "render.error_target", 1e-5, 0.5);
         if (r.method != Method::Clipped)

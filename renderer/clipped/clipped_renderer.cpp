@@ -261,7 +261,8 @@ std::vector<int> positionsOf(const ClippedContext& ctx, const SegmentSpec& seg, 
                            .t1 = seg.window.t1,
                            .intervals = sharedIntervals(motion.tiles),
                            .spacing = ctx.job.render.sweep_spacing,
-                           .max_positions = ctx.job.render.max_subframes});
+                           .max_positions = ctx.job.render.max_subframes,
+                           .exact = ctx.job.render.sweep_time == SweepTime::Exact});
 }
 
 // The tile plans and, for time_integration auto, which of point subframes and sweep the segment uses:
@@ -330,6 +331,7 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
     totals.stats.near_crossing_fragments += plan.motion.near_crossings;
     totals.stats.sweep_backdrop_tiles += plan.motion.backdrop_tiles;
     plan.intervals.intervals = sharedIntervals(plan.motion.tiles);
+    plan.intervals.exact = ctx.job.render.sweep_time == SweepTime::Exact;
     if (plan.sweep)
         plan.intervals.turns =
             turnsPerInterval(scene, ctx.frame.projection, seg.window.t0, seg.window.t1, plan.intervals.positions);

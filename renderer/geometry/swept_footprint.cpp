@@ -87,6 +87,12 @@ bool SweepPath::moves() const {
            depth_bend != 0.0 || !turns.empty();
 }
 
+bool SweepPath::translates() const {
+    const glm::dvec2 zero(0.0);
+    return bend == zero && stretch_chord == zero && stretch_bend == zero && depth_chord == 0.0 && depth_bend == 0.0 &&
+           turns.empty();
+}
+
 void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions, std::vector<PixelWeight>& out) {
     forEachSweptCell(q, path, positions, [&](int x, int y, double w) { out.push_back({x, y, w}); });
 }

@@ -87,6 +87,9 @@ struct SweepPath {
     // Sets the stretch so that it is `open` at s = -1/2 and `close` at s = 1/2.
     void setStretch(const glm::dvec2& open, const glm::dvec2& close);
     bool moves() const;
+    // Whether it is a translation at a constant rate (no bend, depth change, stretch or turn): then an
+    // exact sweep's chords all have one velocity and are one (chord_sweep.h).
+    bool translates() const;
     // Bounds the pivot's offset over the interval: (|chord| / 2 + |bend|) / (least w), infinity when w
     // reaches 0 (the point would cross the camera plane). With turns, the farthest of the open and close
     // offsets and the control point of the raster parabola through them (its Bezier hull holds it),

@@ -37,6 +37,10 @@ SweepInterval sweepInterval(const PixelBounds& tile, double max_sweep_pixels, in
     return s;
 }
 
+double bendLength(const glm::dvec2& a, const glm::dvec2& m, const glm::dvec2& b) {
+    return std::sqrt(glm::length(m - 0.5 * (a + b)) / kBendTolerance);
+}
+
 std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
                                 const SweepLayout& layout) {
     const double t0 = layout.t0, t1 = layout.t1;
@@ -64,6 +68,10 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
                     const MeshPoint v = vertex(i);
                     const ProjectedPoint a = project(begin, scene, v), m = project(middle, scene, v), b = project(end, scene, v);
                     if (a.behind || m.behind || b.behind) continue;
+                    if (layout.exact) {
+                        farthest = std::max(farthest, bendLength(a.raster, m.raster, b.raster));
+                        continue;
+                    }
                     const SweepPath path = SweepPath::through({a.raster, a.depth}, {m.raster, m.depth}, {b.raster, b.depth});
                     farthest = std::max(farthest, pathTravel(path));
                 }

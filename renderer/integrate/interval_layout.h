@@ -51,6 +51,7 @@ struct SweepInterval {
     // Per object, its motion group (MotionPlan::groups): a pixel's fragments of one group move alike.
     std::span<const std::uint32_t> groups;
     double tilt = 0.0;  // the shutter curve over the interval (SweepPath::tilt); 0 for a box
+    bool exact = false;  // render.sweep_time exact: chords integrated exactly (chord_sweep.h), else positions
 
     bool sweeps(const SweepPath& path) const { return pathTravel(path) <= reach; }
 };
@@ -64,12 +65,13 @@ struct SweepInterval {
 SweepInterval sweepInterval(const PixelBounds& tile, double max_sweep_pixels, int n, const PixelBounds& film);
 
 // How sweep positions are laid out: `intervals` equal intervals of [t0, t1], at most `spacing` pixels and
-// at most `max_positions` positions apart.
+// at most `max_positions` positions apart; `exact` for render.sweep_time exact.
 struct SweepLayout {
     double t0 = 0.0, t1 = 1.0;
     int intervals = 1;
     double spacing = 1.0;
     int max_positions = 1;
+    bool exact = false;
 };
 
 // Sweep integration: the positions of each of the layout's equal intervals of [t0, t1], shared by every fragment
@@ -78,8 +80,21 @@ struct SweepLayout {
 // interval's ends and middle, as a swept fragment moves). An interval where things move slowly (the end of
 // a dolly away) gets fewer positions than one where they move fast. Vertices at or behind the camera plane
 // are left out (they are not swept, see SweepInterval::reach).
+// Exact sweep integrates each fragment exactly along the chords between positions, so they serve only to
+// follow how paths bend: a path whose chord over the interval strays by d pixels at the middle (its
+// sagitta: the middle position's distance from the ends' midpoint, which also sees a speed that changes
+// along a straight path) strays by d / n^2 with n chords. There an interval gets bendLength / spacing
+// positions over the vertices' largest bendLength: no chord strays more than kBendTolerance spacing^2
+// pixels, and a path that does not bend needs one position however far it travels.
 std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
                                 const SweepLayout& layout);
+
+// Exact sweep: at sweep_spacing 1 no chord strays farther than this from its path (px).
+inline constexpr double kBendTolerance = 1.0 / 64.0;
+
+// Exact sweep's measure of a path through a, m and b at an interval's start, middle and end:
+// sqrt(sagitta / kBendTolerance), in pixels, so that positions = bendLength / spacing.
+double bendLength(const glm::dvec2& a, const glm::dvec2& m, const glm::dvec2& b);
 
 // The intervals a segment's moving tiles share under sweep (planMotion gives them one count): the largest
 // tile count, at least 1.
@@ -96,6 +111,7 @@ struct SweepSchedule {
     int intervals = 1;
     std::vector<int> positions;
     std::vector<IntervalTurns> turns;
+    bool exact = false;  // render.sweep_time exact
 };
 
 // A shutter segment's span and the shutter curve's weight at its ends (ShutterSegment; equal for a box).

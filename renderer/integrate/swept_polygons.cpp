@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "renderer/clipped/time_error.h"
+#include "renderer/geometry/chord_sweep.h"
 
 namespace clipblur {
 
@@ -85,10 +86,46 @@ void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector
     swept.insert(swept.end(), staging.begin(), staging.end());
 }
 
+namespace {
+
+// Exact sweep (chord_sweep.h): each polygon's chords integrated exactly; the nested rule's difference from
+// chords through its coarser knots, where the path does not translate (a translating one's is one exact
+// chord either way: 0).
+void accumulateChords(const SweepInterval& sweep, std::span<const SweptPolygon> swept, TileSums& out) {
+    for (const SweptPolygon& p : swept) {
+        const bool levels = out.track_error && p.positions == sweep.positions && p.positions >= 3 && !p.path.translates();
+        const glm::dvec4 value(p.colour, p.coverage ? 1.0 : 0.0);
+        // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
+        const auto add = [&](int x, int y, double w) {
+            if (!out.box.contains(x, y)) return;
+            const std::size_t i = out.box.index(x, y);
+            out.colour[i] += w * p.colour;
+            if (out.track_objects)
+                for (int k = 0; k < p.objects.count; ++k)
+                    addShare(out.objects[i], p.objects.shares[static_cast<std::size_t>(k)].object,
+                             w * p.objects.shares[static_cast<std::size_t>(k)].coverage);
+            if (levels) out.d3[i] -= w * value;
+            if (!p.coverage) return;
+            out.covered[i] += w;
+            out.motion[i] += w * p.motion;
+            out.depth[i] += w * p.depth;
+        };
+        forEachChordCell(p.polygon, p.path, p.positions, add);
+        if (!levels) continue;
+        const auto coarse = [&](int x, int y, double w) {
+            if (out.box.contains(x, y)) out.d3[out.box.index(x, y)] += w * value;
+        };
+        forEachChordCell(p.polygon, p.path, p.positions, coarse, SweepKnots::Nested);
+    }
+}
+
+}  // namespace
+
 void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, std::span<const SweptPolygon> swept, TileSums& out) {
     PixelBounds box = tile;
     for (const SweptPolygon& p : swept) {
-        const RasterBounds b = sweptBounds(p.polygon, p.path, p.positions);
+        const RasterBounds b = sweep.exact ? chordBounds(p.polygon, p.path, p.positions) : sweptBounds(p.polygon, p.path, p.positions);
+        if (b.empty()) continue;  // exact: edge-on or facing away over the whole interval
         box.x0 = std::min(box.x0, static_cast<int>(std::floor(b.lo.x)));
         box.y0 = std::min(box.y0, static_cast<int>(std::floor(b.lo.y)));
         box.x1 = std::max(box.x1, static_cast<int>(std::ceil(b.hi.x)));
@@ -96,6 +133,10 @@ void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, std::s
     }
     box = box.intersect(sweep.box);
     out.reset(box);
+    if (sweep.exact) {
+        accumulateChords(sweep, swept, out);
+        return;
+    }
     const auto addObjects = [&](std::size_t i, double w, const PolygonObjects& objects) {
         for (int k = 0; k < objects.count; ++k)
             addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,

@@ -32,6 +32,7 @@ TilePass planTile(const SegmentIntegration& segment, int index) {
     if (segment.sweep && n > 0) {
         sweep = sweepInterval(tile, plan.max_sweep_pixels, n, segment.frame.scene().film.pixels());
         sweep.groups = segment.motion.groups;
+        sweep.exact = segment.sweep->exact;
     }
     return {.segment = segment, .index = index, .tile = tile, .still = still, .n = n, .sweep = sweep, .layout = {}};
 }

@@ -19,8 +19,9 @@ struct TileSums {
     std::vector<glm::dvec2> motion;
     bool track_objects = false;         // set before reclipSubframe: fill `objects` (ID mattes)
     std::vector<ObjectShares> objects;  // per object its covered area, as `covered` sums all of them
-    // Sweep: per pixel what the interval's coarser nested rule (NestedRule) differs by, Q_3h - Q_h over
-    // its positions, in colour and covered area. Filled when track_error is set.
+    // Sweep: per pixel what the interval's coarser nested rule (NestedRule; exact sweep: chords through its
+    // knots, SweepKnots::Nested) differs by, Q_3h - Q_h over its positions, in colour and covered area.
+    // Filled when track_error is set.
     bool track_error = false;
     std::vector<glm::dvec4> d3;
 

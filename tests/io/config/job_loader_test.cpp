@@ -63,6 +63,7 @@ render:
   ode_steps: 5
   time_integration: sweep
   sweep_spacing: 2.5
+  sweep_time: exact
   visibility_rays: 2
   shadows: true
   seed: 18446744073709551615
@@ -104,7 +105,7 @@ const char* kJsonJob = R"({
      "deformation": [{"time": 0, "obj": "tri.obj"}, {"time": 1, "obj": "tri_moved.obj"}]}
   ],
   "render": {"method": "stochastic", "samples": 8, "subframes": 12, "max_subframes": 64, "path_method": "rk4",
-             "ode_steps": 5, "time_integration": "sweep", "sweep_spacing": 2.5, "visibility_rays": 2, "shadows": true, "seed": 18446744073709551615, "tile_size": 16},
+             "ode_steps": 5, "time_integration": "sweep", "sweep_spacing": 2.5, "sweep_time": "exact", "visibility_rays": 2, "shadows": true, "seed": 18446744073709551615, "tile_size": 16},
   "output": {"path": "out.exr", "half": false, "png_preview": true, "aovs": ["motion", "depth"], "stats": "s.json"}
 }
 )";
@@ -187,6 +188,7 @@ TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
         EXPECT_EQ(job->render.ode_steps, 5);
         EXPECT_EQ(job->render.time_integration, TimeIntegration::Sweep);
         EXPECT_EQ(job->render.sweep_spacing, 2.5);
+        EXPECT_EQ(job->render.sweep_time, SweepTime::Exact);
         EXPECT_EQ(job->render.visibility_rays, 2);
         EXPECT_TRUE(job->render.shadows);
         EXPECT_EQ(job->render.seed, 18446744073709551615ull);
@@ -232,6 +234,7 @@ TEST(JobLoader, DefaultsWhenOptionalSectionsAreAbsent) {
     EXPECT_EQ(job.render.samples, defaults.render.samples);
     EXPECT_EQ(job.render.subframes, 0);
     EXPECT_EQ(job.render.time_integration, TimeIntegration::Auto);
+    EXPECT_EQ(job.render.sweep_time, SweepTime::Points);
     ASSERT_EQ(job.scene.materials.size(), 1u);
     EXPECT_EQ(job.scene.objects[0].name, "object0");
     EXPECT_EQ(job.scene.objects[0].mesh.triangles.size(), 12u);
@@ -310,6 +313,7 @@ INSTANTIATE_TEST_SUITE_P(
                   ExitCode::Config, "{type: grid", "triangles"},
         ErrorCase{"DuplicateKey", "e.yaml", minimalYaml("film: {width: 3, width: 4}\n"), ExitCode::Config, "width: 4", "duplicate key"},
         ErrorCase{"UnknownEnum", "e.yaml", minimalYaml("render: {method: magic}\n"), ExitCode::Config, "magic", "one of clipped"},
+        ErrorCase{"UnknownSweepTime", "e.yaml", minimalYaml("render: {sweep_time: chords}\n"), ExitCode::Config, "chords", "one of points"},
         ErrorCase{"SubframesAboveMax", "e.yaml", minimalYaml("render: {max_subframes: 8, subframes: 9}\n"), ExitCode::Config, "9}", "[1, 8]"},
         ErrorCase{"ErrorTargetOutOfRange", "e.yaml", minimalYaml("render: {error_target: 0.9}\n"), ExitCode::Config, "0.9}", "must be in [1e-05, 0.5]"},
         ErrorCase{"ErrorTargetWithSpacing", "e.yaml", minimalYaml("render: {time_integration: sweep, sweep_spacing: 2, error_target: 0.001}\n"),

@@ -18,8 +18,11 @@ using testing::addTransformKey;
 // The positions one interval needs by its definition, from the test's own slow projection: the farthest
 // a vertex gets from its interval-start position along the parabola through its exact positions at the
 // interval's start, middle and end (chord + twice the middle's distance from the chord's midpoint bounds
-// that parabola), over the spacing, rounded up.
-int expectedPositions(const Scene& scene, const Projection& projection, double t0, double t1, double spacing) {
+// that parabola), over the spacing, rounded up. Exact sweep's by its definition: n chords stray by
+// sagitta / n^2 (the sagitta: the middle's distance from the chord's midpoint), so kBendTolerance x
+// spacing^2 needs sqrt(sagitta / kBendTolerance) / spacing of them.
+int expectedPositions(const Scene& scene, const Projection& projection, double t0, double t1, double spacing,
+                      bool exact = false) {
     double farthest = 0.0;
     for (int v = 0; v < 3; ++v) {
         glm::dvec3 b(0.0);
@@ -27,9 +30,18 @@ int expectedPositions(const Scene& scene, const Projection& projection, double t
         const glm::dvec2 a = referenceProjection(scene, projection, 0, 0, b, t0).raster;
         const glm::dvec2 m = referenceProjection(scene, projection, 0, 0, b, 0.5 * (t0 + t1)).raster;
         const glm::dvec2 e = referenceProjection(scene, projection, 0, 0, b, t1).raster;
-        farthest = std::max(farthest, glm::length(e - a) + 2.0 * glm::length(0.5 * (a + e) - m));
+        const double sagitta = glm::length(0.5 * (a + e) - m);
+        farthest = std::max(farthest, exact ? std::sqrt(sagitta / kBendTolerance) : glm::length(e - a) + 2.0 * sagitta);
     }
     return std::max(1, static_cast<int>(std::ceil(farthest / spacing)));
+}
+
+// A camera dollying away (depth doubles over the shutter) from a triangle.
+Scene dollyAwayScene() {
+    Scene scene = stillCameraScene(640, 360, 40.0);
+    scene.camera.keys.push_back({1.0, {0, 0, -10}, {0, 0, 1}, {0, 1, 0}});
+    scene.objects.push_back(triangleObject({-3, -2, 10}, {3, -1.5, 10}, {0.5, 2.5, 12}));
+    return scene;
 }
 
 }  // namespace
@@ -38,9 +50,7 @@ int expectedPositions(const Scene& scene, const Projection& projection, double t
 // more sweep positions than the late ones. Each interval gets what its own motion needs (checked
 // against the independent projection), not what the fastest moment of the shutter needs.
 TEST(SweepPositions, FollowEachIntervalsOwnMotion) {
-    Scene scene = stillCameraScene(640, 360, 40.0);
-    scene.camera.keys.push_back({1.0, {0, 0, -10}, {0, 0, 1}, {0, 1, 0}});
-    scene.objects.push_back(triangleObject({-3, -2, 10}, {3, -1.5, 10}, {0.5, 2.5, 12}));
+    const Scene scene = dollyAwayScene();
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
     const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
     FragmentLayers layers;
@@ -75,6 +85,45 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
     const std::vector<int> positions = sweepPositions(
         scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 1000});
     EXPECT_EQ(positions[0], static_cast<int>(std::ceil(focal / 5.0 * 0.5)));
+}
+
+// Exact sweep spaces positions by bend, not travel. The dolly away above: image speed falls as 1/depth^2
+// and the paths bend in time as it changes, so the early intervals still need more positions than the late
+// ones (about (z1 / z0)^1.5 = 2.8x for the sagitta's 8x), each what its own bend needs.
+TEST(SweepPositions, ExactFollowEachIntervalsOwnBend) {
+    const Scene scene = dollyAwayScene();
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
+    FragmentLayers layers;
+    layers.triangles = {&triangles, nullptr};
+    constexpr int kIntervals = 6;
+    constexpr double kSpacing = 0.1;
+    const std::vector<int> positions = sweepPositions(
+        scene, projection, layers,
+        {.t0 = 0.0, .t1 = 1.0, .intervals = kIntervals, .spacing = kSpacing, .max_positions = 1000, .exact = true});
+    ASSERT_EQ(positions.size(), std::size_t(kIntervals));
+    for (int k = 0; k < kIntervals; ++k)
+        EXPECT_EQ(positions[k], expectedPositions(scene, projection, k / double(kIntervals), (k + 1) / double(kIntervals), kSpacing, true))
+            << "interval " << k;
+    EXPECT_GT(positions.front(), 2 * positions.back());
+}
+
+// A pan (camera translation parallel to the film) moves every point along a straight line at a constant
+// rate: nothing bends, one position however far it travels.
+TEST(SweepPositions, ExactNeedOneWhereNothingBends) {
+    Scene scene = stillCameraScene(640, 360, 40.0);
+    scene.camera.keys.push_back({1.0, {4, 1, 0}, {0, 0, 1}, {0, 1, 0}});
+    scene.objects.push_back(triangleObject({-1, -1, 5}, {1, -1, 5}, {0, 1, 7}));
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
+    FragmentLayers layers;
+    layers.triangles = {&triangles, nullptr};
+    const std::vector<int> positions = sweepPositions(
+        scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 0.1, .max_positions = 1000, .exact = true});
+    EXPECT_EQ(positions[0], 1);
+    const std::vector<int> points = sweepPositions(
+        scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 0.1, .max_positions = 1000});
+    EXPECT_GT(points[0], 100) << "the same pan under point positions: travel / spacing";
 }
 
 // The reach and apron rule by hand: 10 px of motion over 4 intervals gives reach 2 x 10 / 4 + 1 = 6 px
