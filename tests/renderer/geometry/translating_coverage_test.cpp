@@ -43,7 +43,7 @@ Weights cells(const SmallPolygon& p, glm::dvec2 d, ChordWeight w) {
 // no renderer code), seeded random convex polygons of 3 to 10 vertices and velocities up to 6 px, a third
 // of them along one of the polygon's edges (edges parallel to the motion) and one still: every pixel to
 // 1e-12 (rounding of cuts on coordinates ~10), and the weights sum to the area.
-TEST(TranslatingCoverage, PolygonMatchesTheOracle) {
+TEST(TranslatingCells, PolygonMatchesTheOracle) {
     std::mt19937 rng(20261127);
     std::uniform_real_distribution<double> u(-3.0, 3.0);
     for (int trial = 0; trial < 300; ++trial) {
@@ -72,7 +72,7 @@ TEST(TranslatingCoverage, PolygonMatchesTheOracle) {
 // by the weight at its middle. That sum errs by at most |w1| h^2 / 12 x the largest rate of change of a
 // pixel's covered area (<= perimeter x |d| < 40 px^2 here): 1e-5 at h = 1/400. The weights sum to
 // area (w0 + w1 / 2) exactly.
-TEST(TranslatingCoverage, LinearWeightInTime) {
+TEST(TranslatingCells, LinearWeightInTime) {
     std::mt19937 rng(20261128);
     std::uniform_real_distribution<double> u(-3.0, 3.0);
     for (int trial = 0; trial < 30; ++trial) {
@@ -102,7 +102,7 @@ TEST(TranslatingCoverage, LinearWeightInTime) {
 // fragment stretching), it is the dense midpoint sum of its exact overlaps (20000 times: each pixel's value
 // is piecewise quadratic in u, so the sum errs by at most (slope jump) h^2 / 8 per kink, < 1e-8), and the
 // weights sum to the integral of its area, (a + u da)(b + u db) (w0 + w1 u), by Simpson's rule (a cubic).
-TEST(TranslatingCoverage, MovingRectangle) {
+TEST(TranslatingCells, MovingRectangle) {
     std::mt19937 rng(20261129);
     std::uniform_real_distribution<double> u(-3.0, 3.0);
     for (int trial = 0; trial < 100; ++trial) {
