@@ -106,7 +106,19 @@ void forEachChord(const SweepPath& path, int positions, SweepKnots knots, F&& ch
         velocity = pending.velocity();
         stretch_rate = pending.stretchRate();
     } else {
-        pathRates(path, prev.s, velocity, stretch_rate);
+        // One knot (the nested rule of 3 positions keeps only the middle one): its rates from the chord
+        // through the outer positions, placed with their turns, as the fine rule sees the path; one
+        // position has no turns, and the path's own rates are its.
+        if (m >= 2) {
+            Knot first{0.5 / m - 0.5, {}, {}}, last{0.5 - 0.5 / m, {}, {}};
+            path.place(first.s, path.turnAt(0, m), first.offset, first.stretch);
+            path.place(last.s, path.turnAt(m - 1, m), last.offset, last.stretch);
+            const SweepChord outer{first.s, last.s, first.offset, last.offset, first.stretch, last.stretch};
+            velocity = outer.velocity();
+            stretch_rate = outer.stretchRate();
+        } else {
+            pathRates(path, prev.s, velocity, stretch_rate);
+        }
         emit(continued(prev, -0.5, velocity, stretch_rate));
     }
     emit(continued(prev, 0.5, velocity, stretch_rate));
@@ -119,10 +131,6 @@ ChordWeight chordWeight(const SweepChord& c, double tilt) {
     return {span * (1.0 + tilt * c.s0), span * span * tilt};
 }
 
-// A chord along which the polygon's shape changes (its stretch does) is cut into parts of constant shape,
-// each its middle's, so no vertex is off by more than this (px) for it; they err alike either way of the
-// middle, so coverage errs far less. Axis-aligned rectangles need no cut (translatingRectangleCells).
-constexpr double kShapeTolerance = 1.0 / 128.0;
 
 }  // namespace
 
@@ -154,7 +162,7 @@ void forEachChordCell(const ConvexPolygon& q, const SweepPath& path, int positio
     forEachChord(path, positions, knots, [&](const SweepChord& c) {
         // Half the stretch change over a part times the extent is how far a vertex is off at its ends.
         const glm::dvec2 change = glm::abs(c.stretch_to - c.stretch_from) * extent;
-        const int parts = std::max(1, static_cast<int>(std::ceil(0.5 * std::max(change.x, change.y) / kShapeTolerance)));
+        const int parts = std::max(1, static_cast<int>(std::ceil(0.5 * std::max(change.x, change.y) / kChordShapeTolerance)));
         const double span = (c.s1 - c.s0) / parts;
         for (int k = 0; k < parts; ++k) {
             const double u0 = double(k) / parts, u1 = double(k + 1) / parts, um = 0.5 * (u0 + u1);
@@ -170,8 +178,11 @@ void forEachChordCell(const ConvexPolygon& q, const SweepPath& path, int positio
 
 RasterBounds chordBounds(const ConvexPolygon& q, const SweepPath& path, int positions) {
     const RasterBounds box = q.bounds();
+    const bool rectangle = swept_detail::axisAlignedRectangle(q);
+    bool reshaped = false;  // a part of one shape can reach past the chord's ends (kChordShapeTolerance)
     RasterBounds out;
     forEachChord(path, positions, SweepKnots::All, [&](const SweepChord& c) {
+        reshaped = reshaped || (!rectangle && c.stretch_from != c.stretch_to);
         for (const auto& [offset, stretch] : {std::pair{c.from, c.stretch_from}, std::pair{c.to, c.stretch_to}}) {
             const glm::dvec2 at = path.pivot + offset;
             const glm::dvec2 a = at + stretch * (box.lo - path.pivot), b = at + stretch * (box.hi - path.pivot);
@@ -179,6 +190,7 @@ RasterBounds chordBounds(const ConvexPolygon& q, const SweepPath& path, int posi
             out.hi = glm::max(out.hi, glm::max(a, b));
         }
     });
+    if (reshaped) out.pad(kChordShapeTolerance);
     return out;
 }
 

@@ -25,8 +25,14 @@ enum class SweepKnots { All, Nested };
 void forEachChordCell(const ConvexPolygon& q, const SweepPath& path, int positions, CellSink add,
                       SweepKnots knots = SweepKnots::All);
 
+// A chord along which a polygon's shape changes (its stretch does) is cut into parts of constant shape,
+// each its middle's, so no vertex is off by more than this (px) for it; they err alike either way of the
+// middle, so coverage errs far less. Axis-aligned rectangles need no cut (translatingRectangleCells).
+inline constexpr double kChordShapeTolerance = 1.0 / 128.0;
+
 // Raster bounds of every chord's moved polygon at both its ends (a polygon whose vertices move linearly
-// stays within their hull): the pixels forEachChordCell can reach.
+// stays within their hull), grown by kChordShapeTolerance where a polygon is cut into parts of one shape:
+// the pixels forEachChordCell can reach with every knot (SweepKnots::All).
 RasterBounds chordBounds(const ConvexPolygon& q, const SweepPath& path, int positions);
 
 }  // namespace clipblur

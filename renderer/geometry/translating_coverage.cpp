@@ -39,8 +39,10 @@ struct CoveredTime {
     ChordWeight w;
 
     // The weight of x's covered time: W(u_hi) - W(u_lo), W(u) = w0 u + w1 u^2 / 2.
+    // Clamped to the chord: exact arithmetic keeps them there on their piece; rounding need not on pieces
+    // thinner than it, whose times are scaled by 1 / k (a velocity nearly along an edge).
     double at(const glm::dvec2& x) const {
-        const double lo = glm::dot(g_lo, x) + c_lo, hi = glm::dot(g_hi, x) + c_hi;
+        const double lo = std::clamp(glm::dot(g_lo, x) + c_lo, 0.0, 1.0), hi = std::clamp(glm::dot(g_hi, x) + c_hi, 0.0, 1.0);
         return (hi - lo) * (w.w0 + 0.5 * w.w1 * (hi + lo));
     }
     // Its integral over a convex polygon: a fan of triangles about v[0], each by the centroid rule (exact
@@ -84,7 +86,10 @@ struct EdgeLine {
 // u = 0 and the back edge at u = 1 pass into at most four pieces on which u_lo and u_hi are linear.
 void translatingCells(const SmallPolygon& p, const glm::dvec2& d, ChordWeight w, CellSink add) {
     if (p.n < 3) return;
-    if (d == glm::dvec2(0.0)) {
+    // A motion below the rounding of the coordinates moves nothing they can show: the polygon stands.
+    double scale = 1.0;
+    for (int i = 0; i < p.n; ++i) scale = std::max({scale, std::abs(p.v[i].x), std::abs(p.v[i].y)});
+    if (glm::length(d) <= 1e-13 * scale) {
         polygonCells(p, w.w0 + 0.5 * w.w1, add);
         return;
     }
