@@ -41,6 +41,9 @@ struct Tuning {
     const RenderJob& job;
     bool sweep = true;
 
+    // p coarser than the pilot (error_target.h): 2 where exact sweep integrates time, else 1.
+    double coarserOrder() const { return sweep && job.render.sweep_time == SweepTime::Exact ? 2.0 : 1.0; }
+
     double intervalOf(const RenderJob& j) const { return sweep ? j.render.sweep_spacing : 1.0 / j.render.subframes; }
     // The whole film at `interval`: every choice is made on whole-film renders, so shards choose alike.
     RenderJob at(double interval) const {
@@ -82,7 +85,8 @@ bool probeCoarser(const Tuning& tuning, int frame, const RenderCallbacks& quiet,
         return true;
     }
     return difference > 0.0 &&
-           spacingForTarget(pilot.anchor_interval, difference, tuning.job.render.error_target) >= kMeasuredRatio * pilot.interval;
+           spacingForTarget(pilot.anchor_interval, difference, tuning.job.render.error_target, tuning.coarserOrder()) >=
+               kMeasuredRatio * pilot.interval;
 }
 
 // The pilot at kPilotSpacing (or kPilotSubframes); where it has no estimate, a sweep pilot is first
@@ -126,10 +130,10 @@ double rmsDifference(const Image& fine, const Image& image) {
     return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
 }
 
-double spacingForTarget(double setting, double estimate, double target) {
+double spacingForTarget(double setting, double estimate, double target, double coarser_order) {
     if (!(estimate > 0.0)) return setting;
     const double r = target / estimate;
-    return setting * (r >= 1.0 ? r : std::sqrt(r));
+    return setting * (r >= 1.0 ? std::pow(r, 1.0 / coarser_order) : std::sqrt(r));
 }
 
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks) {
@@ -149,7 +153,7 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     const auto errorOf = [&](const RenderJob& j, const RenderResult& r) {
         return measured(j) ? rmsDifference(pilot.render.image, r.image) : r.stats.clipped().estimated_error;
     };
-    RenderJob final_job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target));
+    RenderJob final_job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target, tuning.coarserOrder()));
     int renders = pilot.renders;
     RenderResult result;
     double reached = pilot.anchor_error;

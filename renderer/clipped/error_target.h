@@ -10,7 +10,8 @@ namespace clipblur {
 // reaches the target:
 //     setting x (target / e0)^(1/p),  p = 2 finer than the pilot, p = 1 coarser,
 // since positions closer than a pixel leave kinks (midpoint rule, h^2) and positions farther apart leave
-// a pixel's value nearly a step (h). Where a sweep pilot estimates 0 (fewer than 3 positions in every
+// a pixel's value nearly a step (h). Exact sweep (render.sweep_time exact) has no steps: its error is the
+// chords' distance from the paths, the square of the spacing either way, so p = 2 coarser too. Where a sweep pilot estimates 0 (fewer than 3 positions in every
 // interval), a render 4x coarser is measured against it: where both did the same work that render is the
 // answer, else their difference anchors the model at its interval. Where that cannot serve (a target finer
 // than the pilot can judge, or point subframes), the pilot is refined 4x, at most twice, until it has an
@@ -23,8 +24,9 @@ namespace clipblur {
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval
-// between samples: pixels of sweep spacing, or 1 / subframes), by the model above.
-double spacingForTarget(double setting, double estimate, double target);
+// between samples: pixels of sweep spacing, or 1 / subframes), by the model above; `coarser_order` is p
+// coarser than the pilot (1, or 2 for exact sweep).
+double spacingForTarget(double setting, double estimate, double target, double coarser_order = 1.0);
 
 // RMS over R, G and B of `image` minus `fine` over image's window (fine's window must hold it).
 double rmsDifference(const Image& fine, const Image& image);

@@ -73,6 +73,41 @@ void expectTracksExactError(const std::vector<int>& samples, bool sweep) {
     EXPECT_LT(mean, 1.5);
 }
 
+// A white quad coming toward the camera (depth 7 -> 4) while sliding, and its reference: 2048 point
+// subframes (midpoint error about 1e-6 here).
+struct ApproachingQuad {
+    RenderJob job;
+    RenderResult reference;
+
+    ApproachingQuad() : job(squareFilmJob()) {
+        job.render.method = Method::Clipped;
+        job.render.max_subframes = 2048;
+        Object quad = test::rasterQuad(9.3, 8.2, 19.7, 21.9, 7.0);
+        quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
+        quad.transform.push_back(TransformKey{1.0, glm::dvec3(2.0, 1.0, -3.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
+        job.scene.objects.push_back(quad);
+        job.render.subframes = 2048;
+        reference = renderFrame(job, 0);
+    }
+    // Exact sweep with auto re-clips.
+    RenderJob exactSweep() const {
+        RenderJob out = job;
+        out.render.time_integration = TimeIntegration::Sweep;
+        out.render.sweep_time = SweepTime::Exact;
+        out.render.subframes = 0;
+        return out;
+    }
+    double trueError(const RenderResult& r) const {
+        double sum = 0.0;
+        for (const char* c : {"R", "G", "B"}) {
+            const auto& a = r.image.find(c)->values;
+            const auto& b = reference.image.find(c)->values;
+            for (std::size_t i = 0; i < a.size(); ++i) sum += std::pow(double(a[i]) - b[i], 2);
+        }
+        return std::sqrt(sum / (3.0 * 32 * 32));
+    }
+};
+
 }  // namespace
 
 TEST(TimeError, SweepEstimateTracksExactErrorOfTranslatingQuad) {
@@ -105,31 +140,14 @@ TEST(TimeError, ExactSweepIsExactOnATranslatingQuadAndEstimatesZero) {
 // spacings the geometric mean within 1.5x. Measured (spacing 2 .. 0.25): true 1.6e-3, 3.8e-4, 9.1e-5,
 // 2.3e-5 (4x per halving); ratios 1.42, 1.21, 1.13, 1.04.
 TEST(TimeError, ExactSweepEstimateTracksExactErrorOfAnApproachingQuad) {
-    RenderJob job = squareFilmJob();
-    job.render.method = Method::Clipped;
-    job.render.max_subframes = 2048;
-    Object quad = test::rasterQuad(9.3, 8.2, 19.7, 21.9, 7.0);
-    quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
-    quad.transform.push_back(TransformKey{1.0, glm::dvec3(2.0, 1.0, -3.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
-    job.scene.objects.push_back(quad);
-    job.render.subframes = 2048;
-    const RenderResult reference = renderFrame(job, 0);
-    job.render.time_integration = TimeIntegration::Sweep;
-    job.render.sweep_time = SweepTime::Exact;
-    job.render.subframes = 1;
+    const ApproachingQuad scene;
+    RenderJob job = scene.exactSweep();
     double log_sum = 0.0;
     int count = 0;
     for (const double spacing : {2.0, 1.0, 0.5, 0.25}) {
         job.render.sweep_spacing = spacing;
         const RenderResult r = renderFrame(job, 0);
-        double sum = 0.0;
-        for (const char* c : {"R", "G", "B"}) {
-            const auto& a = r.image.find(c)->values;
-            const auto& b = reference.image.find(c)->values;
-            for (std::size_t i = 0; i < a.size(); ++i) sum += std::pow(double(a[i]) - b[i], 2);
-        }
-        const double true_error = std::sqrt(sum / (3.0 * 32 * 32));
-        const double ratio = r.stats.clipped().estimated_error / true_error;
+        const double ratio = r.stats.clipped().estimated_error / scene.trueError(r);
         EXPECT_GT(ratio, 0.25) << spacing;
         EXPECT_LT(ratio, 4.0) << spacing;
         log_sum += std::log(ratio);
@@ -138,6 +156,21 @@ TEST(TimeError, ExactSweepEstimateTracksExactErrorOfAnApproachingQuad) {
     const double mean = std::exp(log_sum / count);
     EXPECT_GT(mean, 1.0 / 1.5);
     EXPECT_LT(mean, 1.5);
+}
+
+// render.error_target with exact sweep on the approaching quad: the spacing model takes order 2 both
+// ways (error_target.h), so the true error lands within the issue's 0.5 .. 1.5 of the target on either
+// side of the pilot (its estimate at 1 px: 4.6e-4). Order 1 coarser, as for point positions, put
+// table1_recede's 3e-4 target at 5.5e-4 (docs/performance.md, "Exact time integration").
+TEST(ErrorTarget, ExactSweepMeetsTargetsOnBothSidesOfThePilot) {
+    const ApproachingQuad scene;
+    for (const double target : {1e-3, 3e-4}) {
+        RenderJob job = scene.exactSweep();
+        job.render.error_target = target;
+        const RenderResult r = renderFrame(job, 0);
+        EXPECT_GT(scene.trueError(r), 0.5 * target) << target;
+        EXPECT_LT(scene.trueError(r), 1.5 * target) << target;
+    }
 }
 
 // Point subframes are the same midpoint rule over the segment, so the same estimate serves them.
