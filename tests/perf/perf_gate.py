@@ -3,8 +3,9 @@
 
 Renders tests/perf/gate_scene.yaml with the clipped method (point subframes and sweep integration)
 and with a stochastic baseline, alternating, several times, then each many-object bench scene
-(configs/bench/many/, made after the tuning) once with sweep integration and automatic re-clips and
-once with the default `time_integration: auto`, and checks against tests/perf/thresholds.json:
+(configs/bench/many/, made after the tuning) once with sweep integration and automatic re-clips, once
+more with `render.sweep_time: exact`, and once with the default `time_integration: auto`, and checks
+against tests/perf/thresholds.json:
   - the RATIOS min(clipped CPU seconds) / min(stochastic CPU seconds) and the same for sweep. CPU
     seconds are the render's own (stats `seconds.cpu`, getrusage around the frame, process start-up
     excluded), so a neighbour that competes for the cores stretches wall clock but hardly moves them.
@@ -72,8 +73,10 @@ AUTO_COUNTS = MANY_COUNTS + ["segments_points", "segments_sweep"]
 METHOD_SETTINGS = {"clipped": ["render.method=clipped", "render.time_integration=subframes"],
                    "sweep": ["render.method=clipped", "render.time_integration=sweep"],
                    "stochastic": ["render.method=stochastic"]}
-# How the many-object scenes are rendered: not part of the timed alternation above.
-MANY_METHODS = {"sweep": METHOD_SETTINGS["sweep"], "auto": ["render.method=clipped"]}
+# How the many-object scenes are rendered: not part of the timed alternation above. "exact" is sweep with
+# render.sweep_time exact, gated under "many-exact/<name>" by the same counts as sweep.
+MANY_METHODS = {"sweep": METHOD_SETTINGS["sweep"], "exact": METHOD_SETTINGS["sweep"] + ["render.sweep_time=exact"],
+                "auto": ["render.method=clipped"]}
 
 # The committed ratio limit is the measured ratio times this. Below 1.5, so that a 1.5x slowdown of
 # the clipped code fails; above the spread of CPU-second ratios between runs under load (docs/performance.md).
@@ -142,7 +145,7 @@ def many_key(method, name):
 
 
 def many_counts(method):
-    return MANY_COUNTS if method == "sweep" else AUTO_COUNTS
+    return AUTO_COUNTS if method == "auto" else MANY_COUNTS
 
 
 def cpu_model():
