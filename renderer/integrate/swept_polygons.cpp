@@ -88,6 +88,20 @@ void mergePixel(std::vector<SweptPolygon>& swept, std::size_t begin, std::vector
 
 namespace {
 
+// What polygon p adds to pixel i of `out` for weight w (px^2 of its footprint there): colour and ID
+// mattes, and for a fragment (not a texture piece) covered area, motion and depth.
+void addSwept(TileSums& out, std::size_t i, double w, const SweptPolygon& p) {
+    out.colour[i] += w * p.colour;
+    if (out.track_objects)
+        for (int k = 0; k < p.objects.count; ++k)
+            addShare(out.objects[i], p.objects.shares[static_cast<std::size_t>(k)].object,
+                     w * p.objects.shares[static_cast<std::size_t>(k)].coverage);
+    if (!p.coverage) return;
+    out.covered[i] += w;
+    out.motion[i] += w * p.motion;
+    out.depth[i] += w * p.depth;
+}
+
 // Exact sweep (chord_sweep.h): each polygon's chords integrated exactly; the nested rule's difference from
 // chords through its coarser knots, where the path does not translate (a translating one's is one exact
 // chord either way: 0).
@@ -99,16 +113,8 @@ void accumulateChords(const SweepInterval& sweep, std::span<const SweptPolygon> 
         const auto add = [&](int x, int y, double w) {
             if (!out.box.contains(x, y)) return;
             const std::size_t i = out.box.index(x, y);
-            out.colour[i] += w * p.colour;
-            if (out.track_objects)
-                for (int k = 0; k < p.objects.count; ++k)
-                    addShare(out.objects[i], p.objects.shares[static_cast<std::size_t>(k)].object,
-                             w * p.objects.shares[static_cast<std::size_t>(k)].coverage);
+            addSwept(out, i, w, p);
             if (levels) out.d3[i] -= w * value;
-            if (!p.coverage) return;
-            out.covered[i] += w;
-            out.motion[i] += w * p.motion;
-            out.depth[i] += w * p.depth;
         };
         forEachChordCell(p.polygon, p.path, p.positions, add);
         if (!levels) continue;
@@ -137,37 +143,17 @@ void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, std::s
         accumulateChords(sweep, swept, out);
         return;
     }
-    const auto addObjects = [&](std::size_t i, double w, const PolygonObjects& objects) {
-        for (int k = 0; k < objects.count; ++k)
-            addShare(out.objects[i], objects.shares[static_cast<std::size_t>(k)].object,
-                     w * objects.shares[static_cast<std::size_t>(k)].coverage);
-    };
     // Only polygons swept over the interval's positions have coarser levels; a still one is the same at all.
     const NestedRule rule(out.track_error ? sweep.positions : 1);
-    const auto addLevels = [&](std::size_t i, int k, double w, const glm::dvec4& value) {
-        out.d3[i] += (w * rule.to3[static_cast<std::size_t>(k)]) * value;
-    };
     for (const SweptPolygon& p : swept) {
-        // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
         const bool levels = out.track_error && p.positions == sweep.positions && p.positions >= 3;
-        if (!p.coverage) {
-            forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
-                if (!out.box.contains(x, y)) return;
-                out.colour[out.box.index(x, y)] += w * p.colour;
-                if (out.track_objects) addObjects(out.box.index(x, y), w, p.objects);
-                if (levels) addLevels(out.box.index(x, y), k, w, glm::dvec4(p.colour, 0.0));
-            });
-            continue;
-        }
+        const glm::dvec4 value(p.colour, p.coverage ? 1.0 : 0.0);
+        // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
         forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
             if (!out.box.contains(x, y)) return;
             const std::size_t i = out.box.index(x, y);
-            out.colour[i] += w * p.colour;
-            if (out.track_objects) addObjects(i, w, p.objects);
-            out.covered[i] += w;
-            out.motion[i] += w * p.motion;
-            out.depth[i] += w * p.depth;
-            if (levels) addLevels(i, k, w, glm::dvec4(p.colour, 1.0));
+            addSwept(out, i, w, p);
+            if (levels) out.d3[i] += (w * rule.to3[static_cast<std::size_t>(k)]) * value;
         });
     }
 }
