@@ -290,7 +290,7 @@ Action addRenderCommand(CLI::App& app) {
         // Images are written by the image module (OpenImageIO): it loads while the frames render, once
         // TBB's libraries and threads are up.
         startWorkerThreads();
-        preloadImageModule();
+        const ImageModulePreload preload;
         const int threads =
             static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
         const ProgressStyle style = parseProgress(opts->progress);

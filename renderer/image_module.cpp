@@ -58,6 +58,8 @@ const ImageModule& imageModule() {
     return *loaded.module;
 }
 
-void preloadImageModule() { loader().start(); }
+ImageModulePreload::ImageModulePreload() { loader().start(); }
+
+ImageModulePreload::~ImageModulePreload() { loader().start().wait(); }
 
 }  // namespace clipblur

@@ -27,7 +27,15 @@ struct ImageModule {
 const ImageModule& imageModule();
 
 // Starts loading the module on a background thread, for a command that will write images: its load
-// then overlaps the scene's loading and rendering. imageModule() waits for it.
-void preloadImageModule();
+// then overlaps the scene's loading and rendering. imageModule() waits for it, and so does the
+// destructor: a command that stops early (an interrupt, an error) must not exit while the loader is
+// inside dlopen, where the exit races the libraries' static constructors (LeakSanitizer saw it as leaks).
+class ImageModulePreload {
+public:
+    ImageModulePreload();
+    ~ImageModulePreload();
+    ImageModulePreload(const ImageModulePreload&) = delete;
+    ImageModulePreload& operator=(const ImageModulePreload&) = delete;
+};
 
 }  // namespace clipblur

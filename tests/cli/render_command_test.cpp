@@ -21,6 +21,11 @@ int run(const std::string& command) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 std::string renderCommand(const fs::path& dir, const std::string& extra) {
     return std::string(CLIPBLUR_BINARY) + " render " + CLIPBLUR_SOURCE_DIR + "/configs/default.yaml" +
            " --set render.method=stochastic --set film.width=64 --set film.height=36 --set render.samples=4" +
@@ -60,7 +65,7 @@ TEST(RenderCommand, InterruptStopsWithoutOutputAndExits130) {
                                " --progress lines --out " + out.string() + " 2>" + log.string();
     const std::string script = render + " & pid=$!; i=0; while [ ! -s " + log.string() +
                                " ] && [ $i -lt 600 ]; do sleep 0.1; i=$((i+1)); done; kill -INT $pid; wait $pid; exit $?";
-    EXPECT_EQ(run("sh -c '" + script + "'"), 130);
+    EXPECT_EQ(run("sh -c '" + script + "'"), 130) << readFile(log);
     EXPECT_FALSE(fs::exists(out));
 }
 
