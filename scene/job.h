@@ -60,7 +60,8 @@ struct RenderSettings {
     int ode_steps = 16;        // per subframe interval, Euler and RK4 only
     // Subframes: the paper's point samples, every subframe re-clipped. Sweep: a subframe's re-clipped
     // fragments also stand for the rest of its interval, each moved along its own displacement to
-    // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel.
+    // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel:
+    // automatic re-clips follow relative motion, max(1, sweep_spacing) pixels of it apart.
     // Auto: per shutter segment the cheaper of the two at equal spacing (point subframes then put
     // vertices sweep_spacing pixels apart; renderer/clipped/integration_cost.h).
     TimeIntegration time_integration = TimeIntegration::Auto;

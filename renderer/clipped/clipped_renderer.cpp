@@ -272,7 +272,12 @@ std::vector<int> positionsOf(const ClippedContext& ctx, const SegmentSpec& seg, 
 void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, SegmentPlan& plan, ClippedStats& stats) {
     const RenderSettings& settings = ctx.job.render;
     const FragmentPaths paths = measurePaths(ctx.frame, seg.window, plan.layers);
-    MotionPlanOptions options{.subframes = seg.subframes, .max_subframes = settings.max_subframes, .backdrop = ctx.backdrop};
+    // Sweep re-clips sample relative motion as positions sample each fragment's own: as far apart as the
+    // spacing, but never more than a pixel of it (finer positions do not refine re-clips).
+    MotionPlanOptions options{.subframes = seg.subframes,
+                              .max_subframes = settings.max_subframes,
+                              .reclip_spacing = std::max(1.0, settings.sweep_spacing),
+                              .backdrop = ctx.backdrop};
     const bool automatic = settings.time_integration == TimeIntegration::Auto;
     if (automatic && seg.subframes == 0 && !ctx.backdrop.behind_everything) {
         options.point_spacing = settings.sweep_spacing;

@@ -149,7 +149,7 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     // A render coarser than the pilot is judged against the pilot image: the two error fields are nearly
     // independent, so the difference is sqrt(e^2 + e_pilot^2), within 1.2x of the render's own e when the
     // pilot's is under 2/3 of it (order >= 1 at 1.5x the interval). Its own estimate falls 1.3-3x short
-    // at coarse intervals (docs/performance.md). Error both share (sweep's re-clips) is not seen.
+    // at coarse intervals (docs/performance.md). Error both share (the pilot's re-clips) is not seen.
     const auto errorOf = [&](const RenderJob& j, const RenderResult& r) {
         return measured(j) ? rmsDifference(pilot.render.image, r.image) : r.stats.clipped().estimated_error;
     };

@@ -20,7 +20,8 @@ namespace clipblur {
 // render). A render at an interval at least 1.5x the pilot's is judged instead by its RMS difference from
 // the pilot image (the pilot is the finer solution) and corrected up to twice. Every render that chooses is
 // of the whole film, so every shard of a frame chooses alike; a shard then renders its window at the
-// chosen setting. The re-clip error that sweep's pilot and render share is not targeted.
+// chosen setting. Sweep's automatic re-clips are spaced by the spacing too where it is over a pixel, so a
+// render coarser than the pilot is judged with its re-clip error; the pilot's own is not seen.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval

@@ -228,11 +228,11 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
             // Sweep integration moves each fragment along its own path between re-clips, so what one
             // surface does smoothly (a pan, a roll, a dolly) needs no re-clip. Re-clips follow what is
             // left: how far surfaces of different motion groups move relative to each other (what one
-            // hides of another: at most a pixel per re-clip, as eq. 24), and how far a path leaves the
-            // parabola a sweep follows (its distance from the parabola through its positions at the
-            // segment's ends and middle: third order, falling as the cube of the count).
+            // hides of another: at most reclip_spacing pixels per re-clip, eq. 24 at that spacing), and
+            // how far a path leaves the parabola a sweep follows (its distance from the parabola through
+            // its positions at the segment's ends and middle: third order, falling as the cube of the count).
             // Self-occlusion inside one object is left to curvature, deformation and shutter segments.
-            constexpr double kChordTolerance = 0.1;  // px
+            constexpr double kChordTolerance = 0.1;  // px, at reclip_spacing 1; both scale with it
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath); a surface that turns or shears under them (a roll) is followed to
             // within FragmentMotion::unstretched_error / n with n intervals, kept at kChordTolerance.
@@ -246,9 +246,9 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
             }
             const PixelBounds t = grid.tile(index);
             const double relative = relativeMotion(refs, motion, RasterBounds{{t.x0, t.y0}, {t.x1, t.y1}}, motionGroup);
-            p.count = subframeCount(std::max({relative, std::cbrt(deviation / kChordTolerance), unstretched / kChordTolerance}),
-                                    max_subframes,
-                                    &p.capped);
+            const double r = options.reclip_spacing, tolerance = kChordTolerance * r;
+            p.count = subframeCount(std::max({relative / r, std::cbrt(deviation / tolerance), unstretched / tolerance}),
+                                    max_subframes, &p.capped);
         }
     });
     // Sweep integration carries fragments across tile borders during an interval, so every moving tile

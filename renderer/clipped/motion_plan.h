@@ -50,6 +50,9 @@ struct MotionPlanOptions {
     int max_subframes = 1;
     bool sweep = false;
     double point_spacing = 1.0;  // point subframes: pixels a vertex moves between them
+    // Sweep: pixels surfaces of different motion groups move relative to each other between re-clips;
+    // the tolerances for how far a sweep strays from a path scale with it.
+    double reclip_spacing = 1.0;
     const Backdrop& backdrop;
 };
 MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers,

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <tuple>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
@@ -319,6 +320,29 @@ TEST(SweepIntegration, OcclusionErrorFallsWithReclips) {
     const RenderResult automatic = renderFrame(job, 0);
     // Relative motion |v - w| = 15.6 px: auto re-clips at least every pixel of it.
     EXPECT_GE(automatic.stats.clipped().subframes_max_per_tile, 16);
+}
+
+// Automatic re-clips are spaced like positions, coarser only: at sweep_spacing s >= 1 surfaces move
+// s px relative to each other between re-clips, and the path tolerances (0.1 px at s = 1) grow to 0.1 s.
+// Relative motion |v - w| = |(15.5, 2.4)| = 15.7 px gives ceil(15.7 / s) re-clips: 16, 8, 4 at s = 1, 2, 4,
+// and 16 still at s = 0.25. A roll of 1 rad strays 0.339 px (AutoReclipsFollowRollButNotStretch):
+// ceil(3.39 / s) = 4, 2, 1 at s = 1, 2, 4.
+TEST(SweepIntegration, AutoReclipsFollowTheSpacingWhereItIsCoarserThanAPixel) {
+    const glm::dvec2 v(11.4, 3.7), w(-4.1, 1.3);
+    RenderJob passing = twoMovingQuads(movingQuad(1.0, 1.0, 31.0, 31.0, 10.0, w), movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v));
+    passing.render.time_integration = TimeIntegration::Sweep;
+    RenderJob roll = squareFilmJob();
+    roll.render.method = Method::Clipped;
+    roll.render.time_integration = TimeIntegration::Sweep;
+    roll.render.segments = 1;
+    roll.scene.objects.push_back(rasterQuad(-8.0, -8.0, 40.0, 40.0, 5.0));
+    roll.scene.camera.keys.push_back(
+        CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(std::sin(1.0), std::cos(1.0), 0)});
+    for (const auto& [spacing, relative, rolled] : {std::tuple{0.25, 16, 4}, {1.0, 16, 4}, {2.0, 8, 2}, {4.0, 4, 1}}) {
+        passing.render.sweep_spacing = roll.render.sweep_spacing = spacing;
+        EXPECT_EQ(renderFrame(passing, 0).stats.clipped().subframes_max_per_tile, relative) << spacing;
+        EXPECT_EQ(renderFrame(roll, 0).stats.clipped().subframes_max_per_tile, rolled) << spacing;
+    }
 }
 
 // Two quads that pass each other in mid-shutter, apart at both ends: what one hides of the other changes
