@@ -115,6 +115,11 @@ def auto_spacing_overrides(rung):
     return o
 
 
+# The same ladder with time integrated exactly between sweep positions (render.sweep_time exact).
+def auto_exact_overrides(rung):
+    return dict(auto_spacing_overrides(rung), **{"render.sweep_time": "exact"})
+
+
 def render(clipblur, config, overrides, image, threads=0):
     """Renders one frame; returns the stats JSON as a dict, with the process's wall clock added."""
     image = Path(image)

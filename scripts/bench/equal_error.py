@@ -8,7 +8,8 @@ disocclusion scene, at 1280x720):
   2. per clipped variant (--methods): `clipped`, the paper's point subframes on the ladder 1, 2, 4, ...
      subframes, `sweep`, sweep integration with rung r re-clips and positions 8/r px apart, and
      `sweep_spacing`, sweep integration with `auto` re-clips and positions 8/r px apart,
-     `auto_spacing`, time_integration auto (per segment points or sweep) at that spacing; each
+     `auto_spacing`, time_integration auto (per segment points or sweep) at that spacing, and
+     `auto_exact`, the same with sweep_time exact (time integrated exactly between positions); each
      until its error is at most e256 (or --max-rung), and `auto`: time, subframes, fragments per
      subframe, peak memory and the error e_c of each rung. Where sweep_spacing's first rung already
      reaches e256 it also goes coarser (r = 1/2, 1/4, 1/8) until a rung does not, so that the time at
@@ -82,7 +83,8 @@ THREAD_GOAL = 1.8
 SWEEP_SPACING_MIN = 0.01  # px, render.sweep_spacing's lower bound (docs/config.md)
 COARSEST_SPACING_RUNG = 1 / 8  # sweep_spacing below rung 1: positions up to 64 px apart
 METHODS = {"clipped": lambda rung: benchlib.ladder_overrides("clipped", rung), "sweep": benchlib.sweep_overrides,
-           "sweep_spacing": benchlib.sweep_spacing_overrides, "auto_spacing": benchlib.auto_spacing_overrides}
+           "sweep_spacing": benchlib.sweep_spacing_overrides, "auto_spacing": benchlib.auto_spacing_overrides,
+           "auto_exact": benchlib.auto_exact_overrides}
 # Both seeds differ from benchlib.REFERENCE_SEED and from each other: independent sample streams.
 DEFAULT_SEEDS = (1001, 2002)
 LOOP_SEED = 3003  # the plain loop's own stream, independent of the pair's
@@ -232,7 +234,7 @@ def measure_scene(clipblur, scene, args, out, log=print):
         # A first rung already at e256 only bounds the time from above; positions can also be coarser
         # than the first rung's (16, 32, 64 px apart), so go down until a rung is above e256 and the time
         # is interpolated between two rungs like every other scene's.
-        if method in ("sweep_spacing", "auto_spacing") and reaching == rungs[0]:
+        if method in ("sweep_spacing", "auto_spacing", "auto_exact") and reaching == rungs[0]:
             rung = rungs[0] / 2
             while rung >= COARSEST_SPACING_RUNG and run(rung) <= pair.e256:
                 reaching = rung
@@ -379,7 +381,8 @@ def main():
     ap.add_argument("--methods", default="clipped,sweep",
                     help="clipped variants to ladder: clipped, sweep (re-clips and positions refined together), "
                          "sweep_spacing (auto re-clips, positions refined), "
-                         "auto_spacing (time_integration auto, its spacing refined as sweep_spacing's)")
+                         "auto_spacing (time_integration auto, its spacing refined as sweep_spacing's), "
+                         "auto_exact (auto_spacing with render.sweep_time exact)")
     ap.add_argument("--auto", choices=("on", "off"), default="on",
                     help="also render each variant at its automatic settings (off where auto is known to be slow)")
     ap.add_argument("--threads", type=int, default=0, help="render threads of the main runs (0: all cores)")

@@ -132,6 +132,18 @@ RenderJob recedingStripedQuad() {
     return job;
 }
 
+// A quad filling the film under a camera rolling by 1 rad in one shutter segment, sweep integration.
+RenderJob rollingCameraJob() {
+    RenderJob roll = squareFilmJob();
+    roll.render.method = Method::Clipped;
+    roll.render.time_integration = TimeIntegration::Sweep;
+    roll.render.segments = 1;
+    roll.scene.objects.push_back(rasterQuad(-8.0, -8.0, 40.0, 40.0, 5.0));
+    roll.scene.camera.keys.push_back(
+        CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(std::sin(1.0), std::cos(1.0), 0)});
+    return roll;
+}
+
 }  // namespace
 
 TEST(SweepIntegration, TranslationMatchesPointSubframesAtTheSameTimes) {
@@ -218,14 +230,7 @@ TEST(SweepIntegration, AutoReclipsFollowRollButNotStretch) {
     dolly.scene.objects.push_back(quad);
     EXPECT_EQ(renderFrame(dolly, 0).stats.clipped().subframes_max_per_tile, 1);
 
-    RenderJob roll = squareFilmJob();
-    roll.render.method = Method::Clipped;
-    roll.render.time_integration = TimeIntegration::Sweep;
-    roll.render.segments = 1;
-    roll.scene.objects.push_back(rasterQuad(-8.0, -8.0, 40.0, 40.0, 5.0));
-    roll.scene.camera.keys.push_back(
-        CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(std::sin(1.0), std::cos(1.0), 0)});
-    const RenderResult rolled = renderFrame(roll, 0);
+    const RenderResult rolled = renderFrame(rollingCameraJob(), 0);
     EXPECT_EQ(rolled.stats.clipped().segments, 1);
     EXPECT_EQ(rolled.stats.clipped().subframes_max_per_tile, 4);
 }
@@ -331,13 +336,7 @@ TEST(SweepIntegration, AutoReclipsFollowTheSpacingWhereItIsCoarserThanAPixel) {
     const glm::dvec2 v(11.4, 3.7), w(-4.1, 1.3);
     RenderJob passing = twoMovingQuads(movingQuad(1.0, 1.0, 31.0, 31.0, 10.0, w), movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v));
     passing.render.time_integration = TimeIntegration::Sweep;
-    RenderJob roll = squareFilmJob();
-    roll.render.method = Method::Clipped;
-    roll.render.time_integration = TimeIntegration::Sweep;
-    roll.render.segments = 1;
-    roll.scene.objects.push_back(rasterQuad(-8.0, -8.0, 40.0, 40.0, 5.0));
-    roll.scene.camera.keys.push_back(
-        CameraKey{1.0, glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(std::sin(1.0), std::cos(1.0), 0)});
+    RenderJob roll = rollingCameraJob();
     for (const auto& [spacing, relative, rolled] : {std::tuple{0.25, 16, 4}, {1.0, 16, 4}, {2.0, 8, 2}, {4.0, 4, 1}}) {
         passing.render.sweep_spacing = roll.render.sweep_spacing = spacing;
         EXPECT_EQ(renderFrame(passing, 0).stats.clipped().subframes_max_per_tile, relative) << spacing;
