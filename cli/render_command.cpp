@@ -243,6 +243,8 @@ void renderAndWriteFrame(const RenderJob& job, const FrameFiles& files, const st
     std::cout << "frame " << frame << ": wrote " << files.image;
     if (!files.png.empty()) std::cout << " and " << files.png;
     std::cout << " (stats " << files.stats << ")\n" << std::flush;
+    // What may show in the image (a hole, strobing): on stderr too, not only in the stats.
+    for (const std::string& w : result.stats.warnings) std::cerr << "clipblur: warning: frame " << frame << ": " << w << "\n";
 }
 
 }  // namespace
@@ -272,6 +274,7 @@ Action addRenderCommand(CLI::App& app) {
         std::vector<std::filesystem::path> read;
         RenderJob job = loadJob(opts->job, opts->overrides, &read);
         throwIfStopped("interrupted while loading the job; nothing rendered");
+        for (const std::string& w : job.warnings) std::cerr << "clipblur: warning: " << w << "\n";
         if (!opts->frames.empty()) {
             const FrameRange range = parseFrameRange(opts->frames);
             job.frames.first = range.first;

@@ -53,6 +53,35 @@ TEST(RenderCommand, SeveralFramesWithoutAPatternIsAUsageError) {
     EXPECT_FALSE(fs::exists(dir / "one.exr"));
 }
 
+// Warnings reach the user on stderr, not only the stats: the job's (a camera key inside a closed box, at
+// its file and line) once, the render's (tiles past max_subframes) per frame.
+TEST(RenderCommand, WarningsOfTheJobAndTheRenderGoToStderr) {
+    const fs::path dir = testing::freshTempDir("clipblur_cli_warnings");
+    const fs::path job = dir / "inside.yaml";
+    std::ofstream(job) << "version: 1\n"
+                          "film: {width: 32, height: 18}\n"
+                          "camera:\n"
+                          "  keys:\n"
+                          "    - {time: 0, position: [0, 0, 0]}\n"
+                          "objects:\n"
+                          "  - name: room\n"
+                          "    primitive: {type: box, size: [10, 10, 10]}\n";
+    const std::string render = std::string(CLIPBLUR_BINARY) + " render " + job.string() + " --progress none --out " +
+                               (dir / "inside.exr").string() + " > " + (dir / "stdout.txt").string() + " 2> " +
+                               (dir / "stderr.txt").string();
+    ASSERT_EQ(run(render), 0) << readFile(dir / "stderr.txt");
+    const std::string job_warning = readFile(dir / "stderr.txt");
+    EXPECT_NE(job_warning.find("clipblur: warning: " + job.string() + ":5:"), std::string::npos) << job_warning;
+    EXPECT_NE(job_warning.find("is inside the bounds of closed"), std::string::npos) << job_warning;
+
+    ASSERT_EQ(run(renderCommand(dir, "--set render.method=clipped --set render.time_integration=subframes"
+                                     " --set render.max_subframes=2 --out " + (dir / "capped.exr").string())),
+              0);
+    const std::string render_warning = readFile(dir / "stderr.txt");
+    EXPECT_NE(render_warning.find("clipblur: warning: frame 0: "), std::string::npos) << render_warning;
+    EXPECT_NE(render_warning.find("needed more than max_subframes (2)"), std::string::npos) << render_warning;
+}
+
 TEST(RenderCommand, InterruptStopsWithoutOutputAndExits130) {
     const fs::path dir = testing::freshTempDir("clipblur_cli_interrupt");
     const fs::path out = dir / "slow.exr";
