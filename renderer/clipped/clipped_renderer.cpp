@@ -7,6 +7,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <initializer_list>
 #include <utility>
 #include <vector>
 
@@ -107,11 +108,20 @@ std::vector<glm::vec2> fragmentMotion(const FrameSetup& frame, const std::vector
 }
 
 // With render.audit set every resolved tile was checked by auditTile. A violation is a renderer bug, so
-// the render fails (no image is written) instead of returning a wrong picture.
-void checkAudit(const AuditStats& audit) {
-    if (audit.violations > 0)
-        throw Error(ExitCode::Render, "fragment audit: " + std::to_string(audit.violations) +
-                                          " invariant violations; " + audit.first_violation);
+// the render fails (no image is written) instead of returning a wrong picture, naming the stage of the
+// first violation. Returns the stages' audits merged.
+AuditStats checkAudit(std::initializer_list<std::pair<const char*, const AuditStats*>> stages) {
+    AuditStats all;
+    std::string where;
+    for (const auto& [name, audit] : stages) {
+        if (!audit) continue;
+        if (audit->violations > 0 && where.empty()) where = std::string(name) + ": " + audit->first_violation;
+        all.merge(*audit);
+    }
+    if (all.violations > 0)
+        throw Error(ExitCode::Render,
+                    "fragment audit: " + std::to_string(all.violations) + " invariant violations; first in " + where);
+    return all;
 }
 
 // What every shutter segment shares: the job, the frame (its motion, Embree and shading state) and the
@@ -557,15 +567,12 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     writeWindow(ctx, sums, mid, result);
 
     if (mid) stats.mid = mid_stats;
-    if (settings.audit) {
-        AuditStats audit = stats.open.audit;
-        if (stats.backdrop) audit.merge(stats.backdrop->audit);
-        audit.merge(stats.close.audit);
-        audit.merge(mid_stats.audit);
-        audit.merge(stats.reclip.audit);
-        checkAudit(audit);
-        stats.audit = audit;
-    }
+    if (settings.audit)
+        stats.audit = checkAudit({{"the open sets", &stats.open.audit},
+                                  {"the backdrop", stats.backdrop ? &stats.backdrop->audit : nullptr},
+                                  {"the close sets", &stats.close.audit},
+                                  {"the mid-shutter set", &mid_stats.audit},
+                                  {"a re-clip", &stats.reclip.audit}});
     if (stats.capped_tiles > 0)
         result.stats.warnings.push_back(std::to_string(stats.capped_tiles) + " tiles needed more than max_subframes (" +
                                         std::to_string(settings.max_subframes) + "); motion there may strobe");
@@ -633,12 +640,8 @@ RenderResult renderAccumulation(const RenderJob& job, int frame, const RenderCal
     stats.renders = n;
     stats.all = frame_stats;
     if (mid) stats.mid = mid_stats;
-    if (settings.audit) {
-        AuditStats audit = frame_stats.audit;
-        audit.merge(mid_stats.audit);
-        checkAudit(audit);
-        stats.audit = audit;
-    }
+    if (settings.audit)
+        stats.audit = checkAudit({{"a subframe's set", &frame_stats.audit}, {"the mid-shutter set", &mid_stats.audit}});
     result.stats.method = std::move(stats);
     return result;
 }

@@ -13,6 +13,13 @@ namespace clipblur {
 
 namespace {
 
+// Areas and distances in a violation: enough digits to show a difference of the tolerance's size.
+std::string digits(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.12g", x);
+    return text;
+}
+
 // A convex polygon in pixel-local coordinates (raster minus the pixel's corner), either orientation.
 using Polygon = std::vector<glm::dvec2>;
 
@@ -220,11 +227,11 @@ void auditTile(std::span<const ScreenTriangle> triangles, const FragmentTile& ti
                     const glm::dvec2 v = f.vertices[k] - corner;
                     const double out = std::max({-v.x, v.x - 1.0, -v.y, v.y - 1.0, 0.0});
                     stats.worst_outside = std::max(stats.worst_outside, out);
-                    if (out > tolerance.outside) audit.fail("fragment vertex " + std::to_string(out) + " px outside");
+                    if (out > tolerance.outside) audit.fail("fragment vertex " + digits(out) + " px outside");
                     p.push_back(v);
                 }
                 if (p.size() < 3 || std::abs(std::abs(shoelace(p)) - f.area) > tolerance.area) {
-                    audit.fail("stored area " + std::to_string(f.area) + " is not the fragment's area");
+                    audit.fail("stored area " + digits(f.area) + " is not the fragment's area");
                 }
                 sum += f.area;
                 const auto own = by_source.find(f.sources[0].source);
@@ -243,12 +250,11 @@ void auditTile(std::span<const ScreenTriangle> triangles, const FragmentTile& ti
                 pieces.push_back(std::move(p));
             }
             if (std::abs(sum - tile.covered_area[i]) > tolerance.area)
-                audit.fail("fragment areas sum to " + std::to_string(sum) + ", covered area is " +
-                           std::to_string(tile.covered_area[i]));
+                audit.fail("fragment areas sum to " + digits(sum) + ", covered area is " + digits(tile.covered_area[i]));
             const double fragments_union = unionAreaInUnitSquare(pieces);
             stats.worst_overlap = std::max(stats.worst_overlap, sum - fragments_union);
             if (sum - fragments_union > tolerance.area)
-                audit.fail("fragments overlap by " + std::to_string(sum - fragments_union) + " px^2");
+                audit.fail("fragments overlap by " + digits(sum - fragments_union) + " px^2");
             if (int(inputs[i].size()) > tolerance.max_union_inputs) {
                 ++stats.union_skipped;
                 continue;
@@ -264,8 +270,7 @@ void auditTile(std::span<const ScreenTriangle> triangles, const FragmentTile& ti
             const double error = std::abs(inputs_union - sum);
             stats.worst_coverage = std::max(stats.worst_coverage, error);
             if (error > tolerance.area + tile.dropped_area)
-                audit.fail("fragments cover " + std::to_string(sum) + " px^2, the inputs " +
-                           std::to_string(inputs_union));
+                audit.fail("fragments cover " + digits(sum) + " px^2, the inputs " + digits(inputs_union));
         }
     }
 }
