@@ -283,7 +283,7 @@ void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, Segmen
     const RenderSettings& settings = ctx.job.render;
     const FragmentPaths paths = measurePaths(ctx.frame, seg.window, plan.layers);
     // Sweep re-clips sample relative motion as positions sample each fragment's own: as far apart as the
-    // spacing, but never more than a pixel of it (finer positions do not refine re-clips).
+    // spacing, but never closer than a pixel (finer positions do not refine re-clips).
     MotionPlanOptions options{.subframes = seg.subframes,
                               .max_subframes = settings.max_subframes,
                               .reclip_spacing = std::max(1.0, settings.sweep_spacing),

@@ -232,7 +232,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
             // how far a path leaves the parabola a sweep follows (its distance from the parabola through
             // its positions at the segment's ends and middle: third order, falling as the cube of the count).
             // Self-occlusion inside one object is left to curvature, deformation and shutter segments.
-            constexpr double kChordTolerance = 0.1;  // px, at reclip_spacing 1; both scale with it
+            constexpr double kChordTolerance = 0.1;  // px at reclip_spacing 1, scaled with it
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath); a surface that turns or shears under them (a roll) is followed to
             // within FragmentMotion::unstretched_error / n with n intervals, kept at kChordTolerance.
