@@ -55,10 +55,6 @@ RasterBounds ConvexPolygon::bounds() const {
     return b;
 }
 
-double ConvexPolygon::edgeSide(int i, const glm::dvec2& p) const {
-    return orient2d(v[i], v[i + 1 == n ? 0 : i + 1], p);
-}
-
 void splitByValues(const ConvexPolygon& p, const double* s, ConvexPolygon& inside, ConvexPolygon& outside) {
     inside.clear();
     outside.clear();
@@ -113,18 +109,59 @@ bool supportingEdge(const ConvexPolygon& q, int e) {
     return true;
 }
 
+namespace {
+
+// A line through a and b bounding q: q lies on its left (orient2d(a, b, x) >= 0).
+struct BoundingLine {
+    glm::dvec2 a{0.0}, b{0.0};
+};
+
+// q's bounding lines in edge order: its supporting edges, and for each run of skipped edges (a cluster of
+// nearly equal vertices bent by rounding) the chord from the run's first vertex to its last where that
+// bounds q. Without it the edges on either side of the cluster were its only bounds, and where they are
+// nearly parallel (a sliver's sides) their half-planes reached far past q: the fragment audit found a
+// 0.16 px strip kept as overlap (FragmentAudit.SliverWithADentedEndRegression).
+int boundingLines(const ConvexPolygon& q, std::array<BoundingLine, kMaxPolygonVertices>& lines) {
+    const auto bounds = [&q](const glm::dvec2& a, const glm::dvec2& b) {
+        if (a == b) return false;
+        for (int i = 0; i < q.n; ++i)
+            if (orient2d(a, b, q.v[i]) < 0.0) return false;
+        return true;
+    };
+    int first = 0;
+    while (first < q.n && !supportingEdge(q, first)) ++first;
+    if (first == q.n) return 0;
+    int count = 0;
+    for (int k = 0; k < q.n; ++k) {
+        const int e = (first + k) % q.n;
+        if (supportingEdge(q, e)) {
+            lines[count++] = {q.v[e], q.v[(e + 1) % q.n]};
+            continue;
+        }
+        int last = e;  // the run of skipped edges e .. last
+        for (; k + 1 < q.n && !supportingEdge(q, (last + 1) % q.n); ++k) last = (last + 1) % q.n;
+        const glm::dvec2& a = q.v[e];
+        const glm::dvec2& b = q.v[(last + 1) % q.n];
+        if (bounds(a, b)) lines[count++] = {a, b};
+    }
+    return count;
+}
+
+}  // namespace
+
 bool splitByConvex(const ConvexPolygon& p, const ConvexPolygon& q, std::vector<ConvexPolygon>& outside,
                    ConvexPolygon& inside) {
     std::array<double, kMaxPolygonVertices> s;
+    std::array<BoundingLine, kMaxPolygonVertices> lines;
+    const int count = boundingLines(q, lines);
     ConvexPolygon rest = p;
     ConvexPolygon in;
     ConvexPolygon out;
-    for (int e = 0; e < q.n; ++e) {
-        if (!supportingEdge(q, e)) continue;
+    for (int l = 0; l < count; ++l) {
         bool any_in = false;
         bool any_out = false;
         for (int i = 0; i < rest.n; ++i) {
-            s[i] = q.edgeSide(e, rest.v[i]);
+            s[i] = orient2d(lines[l].a, lines[l].b, rest.v[i]);
             any_in |= s[i] > 0.0;
             any_out |= s[i] < 0.0;
         }
@@ -145,10 +182,11 @@ bool splitByConvex(const ConvexPolygon& p, const ConvexPolygon& q, std::vector<C
 }
 
 void intersect(const ConvexPolygon& p, const ConvexPolygon& q, ConvexPolygon& out) {
+    std::array<BoundingLine, kMaxPolygonVertices> lines;
+    const int count = boundingLines(q, lines);
     ConvexPolygon rest = p;
-    for (int e = 0; e < q.n && !rest.degenerate(); ++e) {
-        if (!supportingEdge(q, e)) continue;
-        clipByLine(rest, q.v[e], q.v[e + 1 == q.n ? 0 : e + 1], out);
+    for (int l = 0; l < count && !rest.degenerate(); ++l) {
+        clipByLine(rest, lines[l].a, lines[l].b, out);
         rest = out;
     }
     out = rest;

@@ -38,8 +38,6 @@ struct ConvexPolygon {
     // Signed area (positive for counter-clockwise), shoelace about v[0] with compensated summation.
     double area() const;
     RasterBounds bounds() const;
-    // Twice the signed area of the triangle formed by edge i (v[i] -> v[i+1]) and point p.
-    double edgeSide(int i, const glm::dvec2& p) const;
 };
 
 // Splits p by the sign of per-vertex values s (an affine function sampled at the vertices; s[i] for

@@ -145,7 +145,7 @@ void expectCleanPixel(const std::vector<ScreenTriangle>& tris, int x, int y) {
 
 // Pixels where the audit caught overlapping fragments in test renders (inputs printed to 17 digits).
 // Crossing points rounded into a tiny concavity: a cluster of nearly equal vertices whose edge lines
-// have arbitrary directions and cut through the piece (fixed by supportingEdge in convex_polygon).
+// have arbitrary directions and cut through the piece (fixed by skipping such edges: supportingEdge).
 // Here a quad's frame-0 and frame-1 copies propagated to one subframe (1/z 0.25) over a background grid
 // (0.1); the background leaked under the quad (coverage 1.00017 px^2).
 TEST(FragmentAudit, PropagatedQuadOverBackgroundRegression) {
@@ -171,6 +171,21 @@ TEST(FragmentAudit, PropagatedQuadOverBackgroundRegression) {
         tri({11.984848484848484, 14.954545454545455}, {13.318181818181818, 22.954545454545457}, {9.3181818181818166, 22.954545454545457}, {0.25, 0.25, 0.25}, 193, 1),
         tri({11.984848484848484, 14.954545454545455}, {9.3181818181818166, 22.954545454545457}, {9.3181818181818166, 14.954545454545455}, {0.25, 0.25, 0.25}, 194, 1),
     }, 11, 14);
+}
+
+// A street scene's re-clip (configs/bench/many/street.yaml at 160x90, render.audit): three triangles of
+// a car's mesh (frame 0) fanning about one vertex, and the same surface from frame 1 offset by 3e-7 px.
+// A mixed piece became a needle 0.23 px long whose blunt end, a cluster of three vertices within 3.4e-7
+// px, rounding had dented; both of its short edges were skipped as non-supporting, which left the
+// needle's two nearly parallel sides as its only bounds there, so the next triangle found a 0.16 px
+// strip "inside" it and kept it twice (overlap 5.6e-8 px^2). The chord across the cluster bounds it now.
+TEST(FragmentAudit, SliverWithADentedEndRegression) {
+    expectCleanPixel({
+        tri({119.45689520481525, 39.002227384160179}, {119.61341845564452, 38.998984467008441}, {119.61341776961962, 39.001739703343766}, {0.053069473143365513, 0.053069932760962751, 0.053069865823916151}, 671, 0),
+        tri({119.61341717946503, 39.004109902005823}, {119.61341776961962, 39.001739703343766}, {120.50524515818346, 38.998961017027867}, {0.053069808241161358, 0.053069865823916151, 0.053072103221894221}, 684, 0),
+        tri({119.61341776961962, 39.001739703343766}, {119.61341845564452, 38.998984467008441}, {120.50524515818346, 38.998961017027867}, {0.053069865823916151, 0.053069932760962751, 0.053072103221894221}, 687, 0),
+        tri({119.45730497344171, 39.004113383145828}, {119.45689512504578, 39.002227017013624}, {119.83924897898824, 39.00103576949288}, {0.053069428322137235, 0.053069473152090853, 0.053070432391998254}, 3239, 1),
+    }, 119, 39);
 }
 
 // A wall seen at both frames (all 1/z 0.1, frames coincide and mix): a mixed piece and its unmixed
