@@ -88,14 +88,22 @@ void forEachChord(const SweepPath& path, int positions, SweepKnots knots, F&& ch
                           a.offset + std::max(ds, 0.0) * velocity, a.stretch + std::min(ds, 0.0) * stretch_rate,
                           a.stretch + std::max(ds, 0.0) * stretch_rate};
     };
+    // Position k of m, placed with its turn, and the chord between two such knots.
+    const auto knotAt = [&](int k) {
+        Knot q{(k + 0.5) / m - 0.5, {}, {}};
+        path.place(q.s, path.turnAt(k, m), q.offset, q.stretch);
+        return q;
+    };
+    const auto between = [](const Knot& a, const Knot& b) {
+        return SweepChord{a.s, b.s, a.offset, b.offset, a.stretch, b.stretch};
+    };
     Knot prev{};
     int count = 0;
     for (int k = 0; k < m; ++k) {
         if (k < grouped && k % 3 != 1) continue;
-        Knot cur{(k + 0.5) / m - 0.5, {}, {}};
-        path.place(cur.s, path.turnAt(k, m), cur.offset, cur.stretch);
+        const Knot cur = knotAt(k);
         if (count++ > 0) {
-            const SweepChord c{prev.s, cur.s, prev.offset, cur.offset, prev.stretch, cur.stretch};
+            const SweepChord c = between(prev, cur);
             if (count == 2) emit(continued(prev, -0.5, c.velocity(), c.stretchRate()));
             emit(c);
         }
@@ -110,10 +118,7 @@ void forEachChord(const SweepPath& path, int positions, SweepKnots knots, F&& ch
         // through the outer positions, placed with their turns, as the fine rule sees the path; one
         // position has no turns, and the path's own rates are its.
         if (m >= 2) {
-            Knot first{0.5 / m - 0.5, {}, {}}, last{0.5 - 0.5 / m, {}, {}};
-            path.place(first.s, path.turnAt(0, m), first.offset, first.stretch);
-            path.place(last.s, path.turnAt(m - 1, m), last.offset, last.stretch);
-            const SweepChord outer{first.s, last.s, first.offset, last.offset, first.stretch, last.stretch};
+            const SweepChord outer = between(knotAt(0), knotAt(m - 1));
             velocity = outer.velocity();
             stretch_rate = outer.stretchRate();
         } else {
@@ -130,7 +135,6 @@ ChordWeight chordWeight(const SweepChord& c, double tilt) {
     const double span = c.s1 - c.s0;
     return {span * (1.0 + tilt * c.s0), span * span * tilt};
 }
-
 
 }  // namespace
 

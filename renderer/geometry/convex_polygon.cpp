@@ -23,6 +23,13 @@ glm::dvec2 crossing(const glm::dvec2& a, double sa, const glm::dvec2& b, double 
     return {std::fma(t, q.x - p.x, p.x), std::fma(t, q.y - p.y, p.y)};
 }
 
+// Whether every vertex of q lies on or left of the line a -> b (orient2d >= 0).
+bool leftOfLine(const ConvexPolygon& q, const glm::dvec2& a, const glm::dvec2& b) {
+    for (int i = 0; i < q.n; ++i)
+        if (orient2d(a, b, q.v[i]) < 0.0) return false;
+    return true;
+}
+
 }  // namespace
 
 ConvexPolygon ConvexPolygon::triangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
@@ -103,10 +110,7 @@ bool supportingEdge(const ConvexPolygon& q, int e) {
     const glm::dvec2& a = q.v[e];
     const glm::dvec2& b = q.v[e + 1 == q.n ? 0 : e + 1];
     const glm::dvec2 d = b - a;
-    if (std::abs(d.x) + std::abs(d.y) >= kShortEdge || q.n < 4) return true;
-    for (int i = 0; i < q.n; ++i)
-        if (orient2d(a, b, q.v[i]) < 0.0) return false;
-    return true;
+    return std::abs(d.x) + std::abs(d.y) >= kShortEdge || q.n < 4 || leftOfLine(q, a, b);
 }
 
 namespace {
@@ -122,12 +126,6 @@ struct BoundingLine {
 // nearly parallel (a sliver's sides) their half-planes reached far past q: the fragment audit found a
 // 0.16 px strip kept as overlap (FragmentAudit.SliverWithADentedEndRegression).
 int boundingLines(const ConvexPolygon& q, std::array<BoundingLine, kMaxPolygonVertices>& lines) {
-    const auto bounds = [&q](const glm::dvec2& a, const glm::dvec2& b) {
-        if (a == b) return false;
-        for (int i = 0; i < q.n; ++i)
-            if (orient2d(a, b, q.v[i]) < 0.0) return false;
-        return true;
-    };
     int first = 0;
     while (first < q.n && !supportingEdge(q, first)) ++first;
     if (first == q.n) return 0;
@@ -142,7 +140,7 @@ int boundingLines(const ConvexPolygon& q, std::array<BoundingLine, kMaxPolygonVe
         for (; k + 1 < q.n && !supportingEdge(q, (last + 1) % q.n); ++k) last = (last + 1) % q.n;
         const glm::dvec2& a = q.v[e];
         const glm::dvec2& b = q.v[(last + 1) % q.n];
-        if (bounds(a, b)) lines[count++] = {a, b};
+        if (a != b && leftOfLine(q, a, b)) lines[count++] = {a, b};
     }
     return count;
 }
