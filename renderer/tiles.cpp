@@ -30,4 +30,71 @@ PixelBounds TileGrid::tile(int index) const {
     return t;
 }
 
+PixelBounds TileGrid::tilesOverlapping(const PixelBounds& box) const {
+    const PixelBounds inside = box.intersect(PixelBounds::sized(x0_, y0_, width_, height_));
+    if (inside.empty()) return {};
+    return PixelBounds::corners((inside.x0 - x0_) / size_, (inside.y0 - y0_) / size_, (inside.x1 - 1 - x0_) / size_ + 1,
+                                (inside.y1 - 1 - y0_) / size_ + 1);
+}
+
+bool TileSet::empty() const {
+    return !every_ && std::none_of(in_.begin(), in_.end(), [](std::uint8_t b) { return b != 0; });
+}
+
+int TileSet::size(const TileGrid& grid) const {
+    int n = 0;
+    for (int i = 0; i < grid.count(); ++i) n += contains(i) ? 1 : 0;
+    return n;
+}
+
+void TileSet::addOverlapping(const TileGrid& grid, const PixelBounds& box) {
+    if (every_) return;
+    const PixelBounds t = grid.tilesOverlapping(box);
+    if (t.empty()) return;
+    in_.resize(static_cast<std::size_t>(grid.count()), 0);
+    for (int ty = t.y0; ty < t.y1; ++ty)
+        for (int tx = t.x0; tx < t.x1; ++tx) in_[static_cast<std::size_t>(ty * grid.columns() + tx)] = 1;
+}
+
+bool TileSet::overlaps(const TileGrid& grid, const PixelBounds& box) const {
+    const PixelBounds t = grid.tilesOverlapping(box);
+    for (int ty = t.y0; ty < t.y1; ++ty)
+        for (int tx = t.x0; tx < t.x1; ++tx)
+            if (contains(ty * grid.columns() + tx)) return true;
+    return false;
+}
+
+PixelBounds TileSet::bounds(const TileGrid& grid) const {
+    PixelBounds box;
+    for (int i = 0; i < grid.count(); ++i) {
+        if (!contains(i)) continue;
+        box = box.empty() ? grid.tile(i) : box.unite(grid.tile(i));
+    }
+    return box;
+}
+
+TileSet TileSet::intersect(const TileSet& other) const {
+    if (every_) return other;
+    if (other.every_) return *this;
+    TileSet out(false);
+    out.in_.resize(std::min(in_.size(), other.in_.size()), 0);
+    for (std::size_t i = 0; i < out.in_.size(); ++i) out.in_[i] = in_[i] & other.in_[i];
+    return out;
+}
+
+TileSet TileSet::minus(const TileSet& other) const {
+    if (other.every_) return none();
+    TileSet out(false);
+    if (every_) {
+        // Once other holds a tile its indices span the grid; holding none, it takes nothing away.
+        out.every_ = other.in_.empty();
+        out.in_.resize(other.in_.size(), 0);
+        for (std::size_t i = 0; i < out.in_.size(); ++i) out.in_[i] = other.in_[i] ? 0 : 1;
+        return out;
+    }
+    out.in_ = in_;
+    for (std::size_t i = 0; i < std::min(in_.size(), other.in_.size()); ++i) out.in_[i] &= other.in_[i] ? 0 : 1;
+    return out;
+}
+
 }  // namespace clipblur

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "scene/pixel_bounds.h"
 
 namespace clipblur {
@@ -19,6 +22,10 @@ public:
     int columns() const { return columns_; }
     int rows() const { return rows_; }
     PixelBounds tile(int index) const;
+    // The index of the tile holding pixel (x, y), which must be inside the grid.
+    int indexOf(int x, int y) const { return ((y - y0_) / size_) * columns_ + (x - x0_) / size_; }
+    // The tiles [tx0, tx1) x [ty0, ty1) (column, row) that overlap `box`; empty when none do.
+    PixelBounds tilesOverlapping(const PixelBounds& box) const;
 
 private:
     int x0_ = 0;
@@ -28,6 +35,37 @@ private:
     int size_;
     int columns_;
     int rows_;
+};
+
+// A set of a TileGrid's tiles, by index: the part of the film a shutter segment renders. Default: every
+// tile, of any grid (the whole film, as the paper's single segment has it).
+class TileSet {
+public:
+    TileSet() = default;
+    static TileSet none() { return TileSet(false); }
+
+    bool every() const { return every_; }
+    bool contains(int index) const {
+        return every_ || (index >= 0 && static_cast<std::size_t>(index) < in_.size() && in_[static_cast<std::size_t>(index)] != 0);
+    }
+    bool empty() const;
+    // Members among the grid's tiles.
+    int size(const TileGrid& grid) const;
+    // Adds the tiles of `grid` that overlap `box`.
+    void addOverlapping(const TileGrid& grid, const PixelBounds& box);
+    // Whether a member tile of `grid` overlaps `box`.
+    bool overlaps(const TileGrid& grid, const PixelBounds& box) const;
+    // The smallest rectangle holding every member tile of `grid`; empty when there is none.
+    PixelBounds bounds(const TileGrid& grid) const;
+    TileSet intersect(const TileSet& other) const;
+    TileSet minus(const TileSet& other) const;
+
+    friend bool operator==(const TileSet&, const TileSet&) = default;
+
+private:
+    explicit TileSet(bool every) : every_(every) {}
+    bool every_ = true;
+    std::vector<std::uint8_t> in_;  // !every_: 1 for a member, by index; missing indices are not members
 };
 
 }  // namespace clipblur

@@ -143,7 +143,8 @@ struct FrontOverBackdrop {
     const WindowSums& front;
     const PixelSums& backdrop;
     const MotionPlan& plan;
-    double weight = 1.0;  // the segment's
+    const TileSet& tiles;  // the segment's
+    double weight = 1.0;   // the segment's
 };
 // What the backdrop adds to a pixel's level differences: it shows through as much as the front leaves
 // uncovered, so a covered-area difference d shows as -d x the backdrop's colour and covered area.
@@ -162,8 +163,10 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
     parallelFor(window.y0, window.y1, [&](int y) {  // each pixel on its own
         for (int x = window.x0; x < window.x1; ++x) {
             const std::size_t i = window.index(x, y);
+            const int tile = (y / size) * grid.columns() + x / size;
+            if (!layers.tiles.contains(tile)) continue;
             sums.addPixel(i, front);
-            if (!layers.plan.backdrop[static_cast<std::size_t>((y / size) * grid.columns() + x / size)]) continue;
+            if (!layers.plan.backdrop[static_cast<std::size_t>(tile)]) continue;
             const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
             const std::size_t p = film.index(x, y);
             sums.addStill(i, seen, backdrop, p);
@@ -188,9 +191,10 @@ struct SegmentSpec {
     double weight = 1.0;
     double curve_begin = 1.0, curve_end = 1.0;  // the shutter curve at begin and end (ShutterSegment)
     int subframes = 0;  // > 0: this segment's fixed re-clip count
+    const TileSet& tiles;  // the film tiles whose pixels it renders
     int index = 0;
     std::span<const int> bands;  // every segment's guard band (guardBandPixels), in order
-    bool next_adjacent = false;  // the next segment begins where this one ends: it opens with our closing set
+    bool next_adjacent = false;  // the next segment begins where this one ends, over the same tiles: it opens with our closing set
 };
 
 // Step 1's result: the clipped, shaded fragment sets at the segment's ends and the still image at its start.
@@ -200,6 +204,24 @@ struct SegmentEnds {
     std::vector<FragmentTriangle> open, close;
     PixelSums still;
 };
+
+// The tiles a segment's fragment sets resolve: the film and a guard band `band` wide, aligned to the
+// band's corner, or where the segment renders part of the film, the part of that grid within reach of
+// it. A film tile there is integrated when its reach (its tile and a sweep apron no wider than the band
+// and 2 px) meets the part; its fragments are those within the band of that reach.
+TileGrid fragmentGrid(const ClippedContext& ctx, const TileSet& tiles, int band) {
+    const Film& film = ctx.job.scene.film;
+    const int size = ctx.job.render.tile_size;
+    const TileGrid whole(-band, -band, film.width + 2 * band, film.height + 2 * band, size);
+    if (tiles.every()) return whole;
+    const int margin = size + 3 * band + 4;
+    const PixelBounds box = tiles.bounds(ctx.frame.grid);
+    const PixelBounds t = whole.tilesOverlapping(
+        PixelBounds::corners(box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin));
+    const int x0 = -band + t.x0 * size, y0 = -band + t.y0 * size;
+    const int x1 = std::min(-band + t.x1 * size, film.width + band), y1 = std::min(-band + t.y1 * size, film.height + band);
+    return TileGrid(x0, y0, x1 - x0, y1 - y0, size);
+}
 
 // Fragment sets over the image and a guard band wide enough that everything seen during the segment is
 // in one of them. A closing set that the next segment opens with is built with that segment's band too,
@@ -217,7 +239,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     int band = seg.bands[static_cast<std::size_t>(seg.index)];
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
-    const TileGrid grid(-band, -band, scene.film.width + 2 * band, scene.film.height + 2 * band, settings.tile_size);
+    const TileGrid grid = fragmentGrid(ctx, seg.tiles, band);
     const auto request = [&](double time) {
         return FrameFragmentRequest{.time = time,
                                     .grid = &grid,
@@ -362,6 +384,7 @@ SegmentIntegration integrationOf(const ClippedContext& ctx, const SegmentSpec& s
             .span = {.t0 = seg.window.t0, .t1 = seg.window.t1, .curve_begin = seg.curve_begin, .curve_end = seg.curve_end},
             .weight = seg.weight,
             .subframes = seg.subframes,
+            .tiles = seg.tiles,
             .shadows = settings.shadows,
             .audit = settings.audit,
             .track_objects = ctx.job.output.cryptomatte.enabled,
@@ -433,13 +456,23 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     const auto stage = Clock::now();
     std::vector<std::vector<Spill>> spills = integrateTiles(ctx, seg, integrationOf(ctx, seg, ends, plan), target, totals.stats);
     addSpills(spills, ctx.window, ctx.frame.grid.tileSize(), target);
-    if (front) compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.weight}, sums);
+    if (front) compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.tiles, seg.weight}, sums);
     totals.stats.seconds.tiles += secondsSince(stage);
 }
 
 }  // namespace
 
 namespace {
+
+// Whether a segment over `tiles` that hides something in `where` is better split there only than over
+// all its tiles. Split there, it keeps fragment sets at both ends over its tiles and its halves get sets
+// at both ends and the middle over `where`'s reach: 2 + 3f sets of its size, f their size over its, where
+// a split of all its tiles builds 3 (one end's set serving both). Its tiles are integrated once and
+// `where`'s twice, against all twice, so it is the better when f < 1/3.
+bool splitsLocally(const ClippedContext& ctx, const TileSet& tiles, const TileSet& where, int band) {
+    const auto size = [&](const TileSet& t) { return fragmentGrid(ctx, t, band).count(); };
+    return 3 * size(where) < size(tiles);
+}
 
 // Shutter segments (one unless something turns far or is hidden at both ends of one), each rendered by
 // the paper's method and weighted by its length.
@@ -453,8 +486,11 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
     HiddenProbe probe;
     int unsplit = 0;
     if (stats.both_frames && settings.segments == 0 && visibilityCanChange(ctx.frame.motion.shutter())) {
-        const auto hidden = [&](double a, double b) {
-            return hidesSomethingAtBothEnds(ctx.frame, a, b, probe);
+        const int cap = std::max(ctx.job.scene.film.width, ctx.job.scene.film.height) / 2;
+        const auto hidden = [&](const ShutterSegment& s) {
+            const int reach = guardBandPixels(ctx.frame.motion, ctx.frame.projection, ctx.frame.motion.window(s.begin, s.end), cap);
+            const TileSet where = hiddenTiles(ctx.frame, s, reach, probe);
+            return where.empty() || splitsLocally(ctx, s.tiles, where, reach) ? where : s.tiles;
         };
         segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
     }
@@ -463,10 +499,21 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
         warnings.push_back(std::to_string(unsplit) + " shutter segments still hide a surface at both ends at max_segments (" +
                            std::to_string(settings.max_segments) + "); it may show as a hole");
     stats.segments = static_cast<long long>(segments.size());
+    for (const ShutterSegment& s : segments) stats.segment_tiles += s.tiles.size(ctx.frame.grid);
     stats.hidden_probe_samples = probe.samples;
     stats.hidden_probe_hits = probe.hidden;
     stats.seconds.hidden_probe = secondsSince(stage);
     return segments;
+}
+
+// The shutter's fraction before segment s where it renders: the weights of the earlier segments over
+// one of its tiles (those over a tile follow each other in time, splitWhereHidden).
+double shareBefore(const std::vector<ShutterSegment>& segments, std::size_t s) {
+    int tile = 0;
+    while (!segments[s].tiles.contains(tile)) ++tile;
+    double share = 0.0;
+    for (std::size_t j = 0; j < s; ++j) share += segments[j].tiles.contains(tile) ? segments[j].weight : 0.0;
+    return share;
 }
 
 // Renders every segment into `sums`. A fixed subframe count is shared out so the shutter has that many
@@ -485,19 +532,20 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
     }
     // A fixed count's share before a fraction of the shutter (1e-9: sums of 1/n reach whole numbers).
     const auto before = [&](double fraction) { return static_cast<int>(std::floor(fixed_total * fraction + 1e-9)); };
-    double share = 0.0;  // the shutter's fraction before the segment
     for (std::size_t s = 0; s < segments.size(); ++s) {
+        const double share = shareBefore(segments, s);
         const int fixed = fixed_total > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
-        share += segments[s].weight;
         const ShutterSegment& segment = segments[s];
         const SegmentSpec spec{.window = windows[s],
                                .weight = segment.weight,
                                .curve_begin = segment.curve_begin,
                                .curve_end = segment.curve_end,
                                .subframes = fixed,
+                               .tiles = segment.tiles,
                                .index = static_cast<int>(s),
                                .bands = bands,
-                               .next_adjacent = s + 1 < segments.size() && segments[s + 1].begin == segment.end};
+                               .next_adjacent = s + 1 < segments.size() && segments[s + 1].begin == segment.end &&
+                                                segments[s + 1].tiles == segment.tiles};
         renderSegment(ctx, spec, sums, totals);
     }
     totals.stats.seconds.segments = secondsSince(stage);

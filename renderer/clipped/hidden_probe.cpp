@@ -24,7 +24,8 @@ bool heldAt(const MotionSnapshot& end, const Scene& scene, const EmbreeScene& em
 
 }  // namespace
 
-HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset) {
+HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset,
+                                  const TileSet& within) {
     const Scene& scene = frame.scene();
     const EmbreeScene& embree = frame.embree;
     const Projection& projection = frame.projection;
@@ -37,38 +38,47 @@ HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, d
     std::vector<HiddenProbe> per_row(static_cast<std::size_t>(std::max(rows, 0)));
     parallelFor(0, rows, [&](int r) {
         HiddenProbe& row = per_row[static_cast<std::size_t>(r)];
-        const double y = r * kProbeStride + oy + 0.5;
+        const int y = r * kProbeStride + oy;
         for (int c = 0; c < columns; ++c) {
-            const glm::dvec2 p = projection.toImagePlane(glm::dvec2(c * kProbeStride + ox + 0.5, y));
+            const int x = c * kProbeStride + ox;
+            if (!within.contains(frame.grid.indexOf(x, y))) continue;
+            const glm::dvec2 p = projection.toImagePlane(glm::dvec2(x + 0.5, y + 0.5));
             const EmbreeHit hit = embree.intersect(camera.position, camera.e3 + p.x * camera.e1 + p.y * camera.e2, at);
             if (!hit.hit) continue;
             ++row.samples;
             const MeshPoint point{static_cast<std::uint32_t>(hit.object), hit.triangle,
                                   glm::dvec3(1.0 - hit.u - hit.v, hit.u, hit.v)};
-            if (!heldAt(open, scene, embree, point) && !heldAt(close, scene, embree, point)) ++row.hidden;
+            if (heldAt(open, scene, embree, point) || heldAt(close, scene, embree, point)) continue;
+            ++row.hidden;
+            row.pixels.emplace_back(x, y);
         }
     });
     HiddenProbe total;
     for (const HiddenProbe& row : per_row) {
         total.samples += row.samples;
         total.hidden += row.hidden;
+        total.pixels.insert(total.pixels.end(), row.pixels.begin(), row.pixels.end());
     }
     return total;
 }
 
 bool visibilityCanChange(const MotionWindow& window) { return !window.eye_still || window.anyObjectMoves(); }
 
-bool hidesSomethingAtBothEnds(const FrameSetup& frame, double a, double b, HiddenProbe& total) {
+TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, int reach, HiddenProbe& total) {
     // The middle first: two objects crossing over one spot uncover it there.
     constexpr std::array<double, 3> kAt{0.5, 0.25, 0.75};
+    const double a = segment.begin, b = segment.end;
+    const int r = reach + kProbeStride;
+    TileSet where = TileSet::none();
     for (std::size_t k = 0; k < kAt.size(); ++k) {
         const HiddenProbe probe =
-            probeHiddenAtBothEnds(frame, a, b, a + (b - a) * kAt[k], static_cast<int>(k));
+            probeHiddenAtBothEnds(frame, a, b, a + (b - a) * kAt[k], static_cast<int>(k), segment.tiles);
         total.samples += probe.samples;
         total.hidden += probe.hidden;
-        if (probe.hidden > 0) return true;
+        for (const glm::ivec2& p : probe.pixels)
+            where.addOverlapping(frame.grid, PixelBounds::corners(p.x - r, p.y - r, p.x + r + 1, p.y + r + 1));
     }
-    return false;
+    return where.intersect(segment.tiles);
 }
 
 }  // namespace clipblur

@@ -1,5 +1,10 @@
 #pragma once
 
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "renderer/clipped/shutter_segments.h"
 #include "renderer/frame_setup.h"
 
 namespace clipblur {
@@ -13,6 +18,7 @@ namespace clipblur {
 struct HiddenProbe {
     long long samples = 0;  // probe rays that hit a surface
     long long hidden = 0;   // of those, surface points hidden at both ends of the segment
+    std::vector<glm::ivec2> pixels;  // the pixel each hidden point was seen in, in row-major order
 };
 
 // Probe cells are kProbeStride x kProbeStride pixels, one ray at a cell point; each probe time shifts the
@@ -25,15 +31,19 @@ inline constexpr int kProbeStride = 2;
 // camera can appear a hair behind its own neighbours).
 inline constexpr double kHeldDepthTolerance = 1e-3;
 
-// Probes the film at time `at`, strictly inside [a, b], with probe offset `offset` (0-3).
-HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset);
+// Probes the film's tiles `within` (frame.grid) at time `at`, strictly inside [a, b], with probe offset
+// `offset` (0-3).
+HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset,
+                                  const TileSet& within = {});
 
 // Whether anything seen from the camera can change what it hides during [t0, t1]: false when the eye does
 // not move and no object moves (a camera that only turns sees the same surfaces from the same point).
 bool visibilityCanChange(const MotionWindow& window);
 
-// Whether the probe at times a quarter, half and three quarters into [a, b] finds a surface hidden at
-// both a and b; counts every probe it ran into `total`.
-bool hidesSomethingAtBothEnds(const FrameSetup& frame, double a, double b, HiddenProbe& total);
+// The tiles of segment.tiles where the probe, at times a quarter, half and three quarters into the
+// segment, finds a surface hidden at both its ends: those within `reach` pixels (how far anything moves
+// over the segment) plus a probe cell of a hidden point, since the surface can show anywhere it passes.
+// Empty when nothing is hidden. Counts every probe it ran into `total`.
+TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, int reach, HiddenProbe& total);
 
 }  // namespace clipblur

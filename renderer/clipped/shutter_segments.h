@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "renderer/frame_motion.h"
+#include "renderer/tiles.h"
 #include "scene/shutter_curve.h"
 
 namespace clipblur {
@@ -23,16 +24,21 @@ struct ShutterSegment {
     double weight = 1.0;  // 1 / count for equal segments, halved exactly by each split
     // The shutter curve's (unnormalised) weight at begin and end, linear between: equal for a box.
     double curve_begin = 1.0, curve_end = 1.0;
+    // The film tiles whose pixels it renders: every tile, or where a split segment hid something (the
+    // rest of that segment's tiles keep it unsplit).
+    TileSet tiles;
 };
 
 // `count` equal segments of [t0, t1]; each boundary is computed once, so neighbours meet at the same double.
 std::vector<ShutterSegment> equalSegments(double t0, double t1, int count);
 
-// Auto segments past rotation: a segment for which `hidden(begin, end)` says something is hidden at both
-// its ends is bisected, and each half is checked again, earlier halves first, until nothing is or there
-// are max_segments. `unsplit` counts the segments still hiding something at the cap.
+// Auto segments past rotation: `hidden(segment)` gives the tiles of segment.tiles where something is
+// hidden at both its ends. Those tiles get the segment's two halves, each checked again over them,
+// earlier halves first; the segment keeps the rest of its tiles. Splitting stops where nothing is hidden
+// or after max_segments - segments.size() splits. A hole is local, so the halves cost what its tiles do,
+// not the film. `unsplit` counts the segments still hiding something at the cap.
 std::vector<ShutterSegment> splitWhereHidden(const std::vector<ShutterSegment>& segments, int max_segments,
-                                             const std::function<bool(double, double)>& hidden, int& unsplit);
+                                             const std::function<TileSet(const ShutterSegment&)>& hidden, int& unsplit);
 
 // A shutter curve that is not a box: each segment cut at the curve's breakpoints inside it, so the
 // curve is linear over every piece, with the piece's share of the curve's integral as its weight. Pieces

@@ -104,7 +104,7 @@ void addOwnPixels(const TilePass& pass, const WeightedSubframes& subframes, doub
     const SegmentIntegration& segment = pass.segment;
     const PixelBounds film = segment.frame.scene().film.pixels();
     const PixelBounds& window = segment.window;
-    const PixelBounds mine = pass.tile.intersect(window);
+    const PixelBounds mine = segment.tiles.contains(pass.index) ? pass.tile.intersect(window) : PixelBounds();
     for (int y = mine.y0; y < mine.y1; ++y) {
         for (int x = mine.x0; x < mine.x1; ++x) {
             const std::size_t pixel_out = window.index(x, y);
@@ -116,17 +116,20 @@ void addOwnPixels(const TilePass& pass, const WeightedSubframes& subframes, doub
     }
 }
 
-// Sweep: what a tile's subframes left in the window's pixels outside the tile, scaled by w, in row-major
-// order.
-void collectSpills(const WeightedSubframes& subframes, const PixelBounds& tile, const PixelBounds& window, double w,
-                   std::vector<Spill>& spilled) {
+// Sweep: what a tile's subframes left in the window's pixels of the segment's other tiles, scaled by w,
+// in row-major order.
+void collectSpills(const TilePass& pass, const WeightedSubframes& subframes, double w, std::vector<Spill>& spilled) {
+    const PixelBounds& tile = pass.tile;
+    const PixelBounds& window = pass.segment.window;
+    const TileGrid& grid = pass.segment.frame.grid;
+    const TileSet& tiles = pass.segment.tiles;
     const std::vector<TileSums>& tile_sums = subframes.sums;
     PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
     for (const TileSums& s : tile_sums) reached = reached.unite(s.box);
     const PixelBounds seen = reached.intersect(window);
     for (int y = seen.y0; y < seen.y1; ++y) {
         for (int x = seen.x0; x < seen.x1; ++x) {
-            if (tile.contains(x, y)) continue;
+            if (tile.contains(x, y) || !tiles.contains(grid.indexOf(x, y))) continue;
             Spill sum = subframeTotal(subframes, x, y);
             if (sum.covered == 0.0) continue;
             sum.out = window.index(x, y);
@@ -146,7 +149,8 @@ void collectSpills(const WeightedSubframes& subframes, const PixelBounds& tile, 
 int integrateTile(const SegmentIntegration& segment, int index, TileOutputs& out, ReclipStats& stats) {
     TilePass pass = planTile(segment, index);
     const PixelBounds reach = pass.sweep.box.x0 < pass.sweep.box.x1 ? pass.sweep.box : pass.tile;
-    if (!segment.window.overlaps(reach)) return -1;
+    if (!segment.window.overlaps(reach) || !segment.tiles.overlaps(segment.frame.grid, reach.intersect(segment.window)))
+        return -1;
     pass.layout = subframeLayout(segment.span, pass.n);
     const bool sweeping = segment.sweep != nullptr;
     std::vector<TileSums> sums(static_cast<std::size_t>(pass.n));
@@ -160,7 +164,7 @@ int integrateTile(const SegmentIntegration& segment, int index, TileOutputs& out
     const NestedRule rule(sweeping ? 1 : pass.n);
     const WeightedSubframes weighted{sums, pass.layout.factors, sweeping ? nullptr : &rule};
     addOwnPixels(pass, weighted, w, out.sums);
-    if (sweeping && pass.n > 0) collectSpills(weighted, pass.tile, segment.window, w, out.spills[static_cast<std::size_t>(index)]);
+    if (sweeping && pass.n > 0) collectSpills(pass, weighted, w, out.spills[static_cast<std::size_t>(index)]);
     for (const ReclipStats& s : sub_stats) stats.merge(s);
     return pass.n;
 }

@@ -54,9 +54,9 @@ inline Object rasterQuad(double x0, double y0, double x1, double y1, double dept
 }
 
 // A rasterQuad that translates by `v` pixels over the shutter [0, 1].
-inline Object movingQuad(double x0, double y0, double x1, double y1, double depth, glm::dvec2 v) {
-    Object quad = rasterQuad(x0, y0, x1, y1, depth);
-    const glm::dvec3 shift = worldAtRaster(x0 + v.x, y0 + v.y, depth) - worldAtRaster(x0, y0, depth);
+inline Object movingQuad(double x0, double y0, double x1, double y1, double depth, glm::dvec2 v, int size = 32) {
+    Object quad = rasterQuad(x0, y0, x1, y1, depth, size);
+    const glm::dvec3 shift = worldAtRaster(x0 + v.x, y0 + v.y, depth, size) - worldAtRaster(x0, y0, depth, size);
     quad.transform.push_back(TransformKey{0.0, glm::dvec3(0.0), {1, 0, 0, 0}, glm::dvec3(1.0)});
     quad.transform.push_back(TransformKey{1.0, shift, {1, 0, 0, 0}, glm::dvec3(1.0)});
     return quad;

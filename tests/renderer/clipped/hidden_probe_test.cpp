@@ -36,6 +36,18 @@ RenderJob crossingJob() {
     return job;
 }
 
+// The segment [a, b] over every tile.
+ShutterSegment segment(double a, double b) { return {a, b, b - a, 1.0, 1.0, {}}; }
+
+// Hidden points the three probes of [a, b] find over the whole film, each run on its own.
+long long threeProbeHits(const Scene& scene, double a, double b) {
+    const test::TestFrame frame(scene, a, b);
+    long long hits = 0;
+    for (const auto& [at, offset] : {std::pair{0.5, 0}, {0.25, 1}, {0.75, 2}})
+        hits += probeHiddenAtBothEnds(frame.setup(), a, b, a + (b - a) * at, offset).hidden;
+    return hits;
+}
+
 }  // namespace
 
 // At t = 0.5 the wall shows over columns [4, 12) and [20, 28) of rows [8, 24), hidden at both ends. The
@@ -49,16 +61,56 @@ TEST(HiddenProbe, CountsTheWallTwoCrossingQuadsHideAtBothEnds) {
         EXPECT_EQ(probe.samples, 256) << "offset " << offset;
         EXPECT_EQ(probe.hidden, 64) << "offset " << offset;
     }
+    // All three probe times run, each counted; at 0.25 and 0.75 the wall shows too (at 0.25 over [4, 8),
+    // which A hides at open and B at close), so the total is the three probes' sum.
     HiddenProbe total;
-    EXPECT_TRUE(hidesSomethingAtBothEnds(frame.setup(), 0.0, 1.0, total));
-    EXPECT_EQ(total.hidden, 64);  // the middle probe finds it; the others are not run
+    EXPECT_FALSE(hiddenTiles(frame.setup(), segment(0.0, 1.0), 0, total).empty());
+    long long expected = 0;
+    for (const auto& [at, offset] : {std::pair{0.5, 0}, {0.25, 1}, {0.75, 2}})
+        expected += probeHiddenAtBothEnds(frame.setup(), 0.0, 1.0, at, offset).hidden;
+    EXPECT_EQ(total.hidden, expected);
+    EXPECT_GT(expected, 64);
     // Split at the middle, each half has the hole at one of its ends: at 0.5 nothing hidden at 0 is hidden
     // (the quads are both over [12, 20)), so nothing is hidden at both ends of [0, 0.5] or [0.5, 1].
     total = {};
-    EXPECT_FALSE(hidesSomethingAtBothEnds(frame.setup(), 0.0, 0.5, total));
-    EXPECT_FALSE(hidesSomethingAtBothEnds(frame.setup(), 0.5, 1.0, total));
+    EXPECT_TRUE(hiddenTiles(frame.setup(), segment(0.0, 0.5), 0, total).empty());
+    EXPECT_TRUE(hiddenTiles(frame.setup(), segment(0.5, 1.0), 0, total).empty());
     EXPECT_EQ(total.samples, 6 * 256);
     EXPECT_EQ(total.hidden, 0);
+}
+
+// The crossing quads of the test above on a 64x64 film of 8x8 tiles, in its top-left quarter: the tiles
+// that get the halves of a split are those within reach (plus a probe cell) of a hidden point, and none
+// of the tiles far from the hole; a probe over other tiles finds nothing there.
+TEST(HiddenProbe, HiddenTilesAreWhereTheHoleIs) {
+    RenderJob job = test::squareFilmJob(64);
+    job.scene.objects.push_back(rasterQuad(-8.0, -8.0, 72.0, 72.0, 10.0, 64));
+    job.scene.objects.push_back(test::movingQuad(4.0, 8.0, 12.0, 24.0, 5.0, {16.0, 0.0}, 64));
+    job.scene.objects.push_back(test::movingQuad(20.0, 8.0, 28.0, 24.0, 6.0, {-16.0, 0.0}, 64));
+    const test::TestFrame frame(job.scene, 0.0, 1.0, 8);
+    const TileGrid& grid = frame.setup().grid;
+    ASSERT_EQ(grid.columns(), 8);
+    HiddenProbe total;
+    for (const int reach : {0, 5}) {
+        const TileSet where = hiddenTiles(frame.setup(), segment(0.0, 1.0), reach, total);
+        // The wall shows in columns [4, 12) and [20, 28) of rows [8, 24) at 0.5: tile columns 0-3, rows 1-2.
+        for (int ty = 1; ty <= 2; ++ty)
+            for (int tx : {0, 1, 2, 3}) EXPECT_TRUE(where.contains(ty * 8 + tx)) << tx << "," << ty << " reach " << reach;
+        // Every hidden point lies in [4, 28) x [8, 24): nothing past reach + 2 (a probe cell) from there.
+        const PixelBounds near = PixelBounds::corners(4 - reach - 2, 8 - reach - 2, 28 + reach + 3, 24 + reach + 3);
+        for (int i = 0; i < grid.count(); ++i)
+            if (!grid.tile(i).overlaps(near)) {
+                EXPECT_FALSE(where.contains(i)) << i << " reach " << reach;
+            }
+        EXPECT_LT(where.size(grid), grid.count() / 2);
+    }
+    // Over the right half of the film only, the probe finds nothing and probes only those tiles.
+    ShutterSegment right = segment(0.0, 1.0);
+    right.tiles = TileSet::none();
+    right.tiles.addOverlapping(grid, PixelBounds::corners(32, 0, 64, 64));
+    total = {};
+    EXPECT_TRUE(hiddenTiles(frame.setup(), right, 0, total).empty());
+    EXPECT_EQ(total.samples, 3 * 32 * 64 / 4);  // every point there hits the wall
 }
 
 // One convex quad translating in the image plane cannot hide a point at both ends that it uncovers in
@@ -75,7 +127,7 @@ TEST(HiddenProbe, OneTranslatingQuadHidesNothingAtBothEnds) {
         job.scene.objects.push_back(movingQuad(x0, y0, x0 + size(rng), y0 + size(rng), depth(rng), {move(rng), move(rng)}));
         const test::TestFrame frame(job.scene, 0.0, 1.0);
         HiddenProbe total;
-        EXPECT_FALSE(hidesSomethingAtBothEnds(frame.setup(), 0.0, 1.0, total)) << trial;
+        EXPECT_TRUE(hiddenTiles(frame.setup(), segment(0.0, 1.0), 4, total).empty()) << trial;
         EXPECT_EQ(total.samples, 3 * 256) << trial;
     }
 }
@@ -114,7 +166,7 @@ TEST(HiddenProbe, AutoSegmentsDrawTheWallBothEndsHide) {
     job.render.segments = 2;
     const RenderResult two = renderFrame(job, 0);
     EXPECT_EQ(automatic.stats.clipped().segments, 2);
-    EXPECT_EQ(automatic.stats.clipped().hidden_probe_hits, 64);
+    EXPECT_EQ(automatic.stats.clipped().hidden_probe_hits, threeProbeHits(job.scene, 0.0, 1.0));  // halves: none
     const auto error = [](const RenderResult& r) {
         double squared = 0.0, worst = 0.0;
         for (const char* name : {"R", "G", "B"}) {
@@ -144,7 +196,8 @@ TEST(HiddenProbe, CentredShutterFindsTheSameHole) {
     job.shutter = {-0.5, 0.5, {}};
     const RenderResult r = renderFrame(job, 0);
     EXPECT_EQ(r.stats.clipped().segments, 2);
-    EXPECT_EQ(r.stats.clipped().hidden_probe_hits, 64);
+    EXPECT_EQ(r.stats.clipped().hidden_probe_hits, threeProbeHits(job.scene, -0.5, 0.5));
+    EXPECT_EQ(r.stats.clipped().hidden_probe_hits, threeProbeHits(crossingJob().scene, 0.0, 1.0));
     double worst = 0.0;
     for (float v : r.image.find("R")->values) worst = std::max(worst, std::abs(v - 1.0));
     EXPECT_LT(worst, 1e-5);  // as AutoSegmentsDrawTheWallBothEndsHide: coverage sums to 1 to float rounding
@@ -156,9 +209,99 @@ TEST(HiddenProbe, SegmentsLeftHidingSomethingAtTheCapAreWarnedAbout) {
     job.render.max_segments = 1;
     const RenderResult capped = renderFrame(job, 0);
     EXPECT_EQ(capped.stats.clipped().segments, 1);
-    EXPECT_EQ(capped.stats.clipped().hidden_probe_hits, 64);
+    EXPECT_EQ(capped.stats.clipped().hidden_probe_hits, threeProbeHits(job.scene, 0.0, 1.0));
     ASSERT_EQ(capped.stats.warnings.size(), 1u);
     EXPECT_NE(capped.stats.warnings[0].find("1 shutter segments still hide a surface"), std::string::npos);
+}
+
+// The crossing quads in the top-left corner of a 256x256 film of 8x8 tiles, over a wall that drifts 1 px
+// (so sweep keeps it in the fragment sets rather than as a still backdrop). With point subframes every
+// surface is white, so the exact image is 1 (as in AutoSegmentsDrawTheWallBothEndsHide), where the
+// unsplit render has the hole; with sweep the wall is checkered. Auto segments split only the tiles near
+// the hole (their sets are well under a third of the film's: splitsLocally), with fragment sets over
+// what is within their reach. Each pixel must be bit-identical to the whole-film render split in two (on
+// the hole) or to the unsplit render (elsewhere): a share counted twice or lost across the split's edge (sweep's tiles
+// spill over it; a fixed re-clip count is shared out by each tile's segments) matches neither. Point
+// subframes get a grey quad crossing and receding in the far corner too, so that one and two segments
+// differ there: they sample its time apart.
+TEST(HiddenProbe, SplitTilesDrawTheHoleAndTheRestRendersUnsplit) {
+    constexpr int kSize = 256;
+    RenderJob job = test::squareFilmJob(kSize);
+    job.render.method = Method::Clipped;
+    job.render.tile_size = 8;
+    job.scene.objects.push_back(test::movingQuad(-8.0, -8.0, 264.0, 264.0, 10.0, {1.0, 0.0}, kSize));
+    job.scene.objects.push_back(test::movingQuad(4.0, 8.0, 12.0, 24.0, 5.0, {16.0, 0.0}, kSize));
+    job.scene.objects.push_back(test::movingQuad(20.0, 8.0, 28.0, 24.0, 6.0, {-16.0, 0.0}, kSize));
+    Material grey;
+    grey.base_color = glm::dvec3(0.5);
+    job.scene.materials.push_back(grey);
+    Object far_quad = test::movingQuad(200.0, 204.0, 207.3, 215.1, 4.0, {13.3, 5.7}, kSize);
+    far_quad.material = 1;
+    far_quad.transform.back().translate.z += 3.0;  // receding: its path bends
+    Material checker;
+    checker.texture = {Texture::Kind::Checker, glm::dvec3(0.3), 0.7};
+    for (const TimeIntegration integration : {TimeIntegration::Subframes, TimeIntegration::Sweep}) {
+        const bool sweep = integration == TimeIntegration::Sweep;
+        SCOPED_TRACE(sweep ? "sweep" : "subframes");
+        RenderJob j = job;
+        j.render.time_integration = integration;
+        // Sweep: 3 re-clips over the shutter (1 and 2 in the halves) leave footprints reaching past tiles.
+        // (Its positions are shared by a segment's tiles, so the far quad would move the hole's too.)
+        j.render.subframes = sweep ? 3 : 0;
+        if (!sweep) j.scene.objects.push_back(far_quad);
+        // Sweep: a checkered wall, so that a share counted twice shows (on white, coverage over 1 is
+        // normalised away).
+        if (sweep) {
+            j.scene.materials.push_back(checker);
+            j.scene.objects[0].material = 2;
+        }
+        const RenderResult split = renderFrame(j, 0);
+        j.render.segments = 1;
+        const RenderResult one = renderFrame(j, 0);
+        j.render.segments = 2;
+        const RenderResult two = renderFrame(j, 0);
+        const ClippedStats& stats = split.stats.clipped();
+        ASSERT_EQ(stats.segments, 3);  // [0, 1] over the far tiles, its halves over the hole's
+        EXPECT_GT(stats.segment_tiles, 1024);
+        EXPECT_LT(stats.segment_tiles, 1024 + 128);  // the halves cover under an eighth of the film
+        // The halves' opening set resolves only what is within reach of the hole's tiles.
+        EXPECT_LT(stats.open.fragments, 1.5 * static_cast<double>(one.stats.clipped().open.fragments));
+        if (sweep) {
+            EXPECT_GT(stats.sweep_spilled_pixels, 0);
+        }
+        double worst_split = 0.0, worst_one = 0.0;
+        int split_only = 0, unsplit_only = 0;
+        for (const char* channel : {"R", "A"}) {
+            const std::vector<float>& got = split.image.find(channel)->values;
+            const std::vector<float>& unsplit = one.image.find(channel)->values;
+            const std::vector<float>& halves = two.image.find(channel)->values;
+            for (int y = 0; y < kSize; ++y) {
+                for (int x = 0; x < kSize; ++x) {
+                    const std::size_t i = static_cast<std::size_t>(y * kSize + x);
+                    const bool as_two = got[i] == halves[i], as_one = got[i] == unsplit[i];
+                    EXPECT_TRUE(as_two || as_one) << x << "," << y << " " << channel;
+                    if (x >= 4 && x < 28 && y >= 8 && y < 24) {
+                        EXPECT_TRUE(as_two) << x << "," << y << " " << channel;
+                    }
+                    if (x >= 64 && y >= 64) {
+                        EXPECT_TRUE(as_one) << x << "," << y << " " << channel;
+                    }
+                    split_only += as_two && !as_one;
+                    unsplit_only += as_one && !as_two;
+                    if (x < 170 || y < 165) {  // the far quad stays in [176, 208) x [170, 222)
+                        worst_split = std::max(worst_split, std::abs(got[i] - 1.0));
+                        worst_one = std::max(worst_one, std::abs(unsplit[i] - 1.0));
+                    }
+                }
+            }
+        }
+        EXPECT_GT(split_only, 0);
+        if (!sweep) {
+            EXPECT_GT(unsplit_only, 0);
+            EXPECT_LT(worst_split, 1e-5);  // sweep's 1 re-clip in [0, 0.5] does not resolve the crossing
+            EXPECT_GT(worst_one, 0.5);     // the hole the split draws
+        }
+    }
 }
 
 // The probe's counts are integers summed in row order, so the split and the image do not depend on the

@@ -88,7 +88,7 @@ TEST(ShutterSegments, EqualSegmentsTileTheShutter) {
 // [0.25, 0.375] does, its halves [0.25, 0.3125] and [0.3125, 0.375] do not, nor do [0.375, 0.5] and
 // [0.5, 1]: five segments, each weighted by its length.
 TEST(ShutterSegments, SplitWhereHiddenBisectsUntilNothingIsHidden) {
-    const auto hidden = [](double a, double b) { return a < 0.30 && b > 0.35; };
+    const auto hidden = [](const ShutterSegment& s) { return s.begin < 0.30 && s.end > 0.35 ? TileSet() : TileSet::none(); };
     int unsplit = -1;
     const std::vector<ShutterSegment> s = splitWhereHidden(equalSegments(0.0, 1.0, 1), 16, hidden, unsplit);
     const std::vector<double> ends{0.25, 0.3125, 0.375, 0.5, 1.0};
@@ -98,7 +98,8 @@ TEST(ShutterSegments, SplitWhereHiddenBisectsUntilNothingIsHidden) {
         EXPECT_EQ(s[i].begin, begin);
         EXPECT_EQ(s[i].end, ends[i]);
         EXPECT_EQ(s[i].weight, ends[i] - begin);  // powers of two: exact
-        EXPECT_FALSE(hidden(s[i].begin, s[i].end));
+        EXPECT_TRUE(hidden(s[i]).empty());
+        EXPECT_TRUE(s[i].tiles.every());
         begin = ends[i];
     }
     EXPECT_EQ(unsplit, 0);
@@ -107,7 +108,7 @@ TEST(ShutterSegments, SplitWhereHiddenBisectsUntilNothingIsHidden) {
 // At the cap a segment that still hides something is kept and counted: [0, 1] and [0, 0.5] split (3
 // segments), [0.25, 0.5] would be the fourth.
 TEST(ShutterSegments, SplitWhereHiddenStopsAtTheCap) {
-    const auto hidden = [](double a, double b) { return a < 0.30 && b > 0.35; };
+    const auto hidden = [](const ShutterSegment& s) { return s.begin < 0.30 && s.end > 0.35 ? TileSet() : TileSet::none(); };
     int unsplit = -1;
     const std::vector<ShutterSegment> s = splitWhereHidden(equalSegments(0.0, 1.0, 1), 3, hidden, unsplit);
     ASSERT_EQ(s.size(), 3u);
@@ -118,6 +119,42 @@ TEST(ShutterSegments, SplitWhereHiddenStopsAtTheCap) {
     const std::vector<ShutterSegment> full = splitWhereHidden(equalSegments(0.0, 1.0, 2), 2, hidden, unsplit);
     EXPECT_EQ(full.size(), 2u);
     EXPECT_EQ(unsplit, 1);
+}
+
+// A hole in one tile of a 4x2 grid: the split segment keeps the other tiles over its whole span, and
+// that tile alone gets the halves, checked again over it alone. Every tile is then covered by segments
+// whose spans partition the shutter, with weights that sum to 1.
+TEST(ShutterSegments, SplitWhereHiddenSplitsOnlyTheTilesThatHide) {
+    const TileGrid grid(64, 32, 16);
+    const int hole = 5;
+    std::vector<int> asked_tiles;
+    const auto hidden = [&](const ShutterSegment& s) {
+        asked_tiles.push_back(s.tiles.size(grid));
+        TileSet where = TileSet::none();
+        if (s.begin < 0.30 && s.end > 0.35 && s.tiles.contains(hole)) where.addOverlapping(grid, grid.tile(hole));
+        return where;
+    };
+    int unsplit = -1;
+    const std::vector<ShutterSegment> s = splitWhereHidden(equalSegments(0.0, 1.0, 1), 16, hidden, unsplit);
+    EXPECT_EQ(unsplit, 0);
+    ASSERT_EQ(s.size(), 6u);  // [0, 1] without the hole's tile, and the five of the whole-film test there
+    EXPECT_EQ(s[0].begin, 0.0);
+    EXPECT_EQ(s[0].end, 1.0);
+    EXPECT_EQ(s[0].tiles.size(grid), 7);
+    EXPECT_FALSE(s[0].tiles.contains(hole));
+    EXPECT_EQ(asked_tiles.front(), 8);
+    for (std::size_t i = 1; i < asked_tiles.size(); ++i) EXPECT_EQ(asked_tiles[i], 1);
+    for (int tile = 0; tile < grid.count(); ++tile) {
+        double weight = 0.0, end = 0.0;
+        for (const ShutterSegment& segment : s) {
+            if (!segment.tiles.contains(tile)) continue;
+            EXPECT_EQ(segment.begin, end) << tile;  // in time order, no gap, no overlap
+            end = segment.end;
+            weight += segment.weight;
+        }
+        EXPECT_EQ(end, 1.0) << tile;
+        EXPECT_EQ(weight, 1.0) << tile;  // powers of two: exact
+    }
 }
 
 }  // namespace clipblur

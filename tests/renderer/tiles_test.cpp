@@ -1,0 +1,92 @@
+#include "renderer/tiles.h"
+
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+
+namespace clipblur {
+
+namespace {
+
+// The tiles of `grid` that share a pixel with `box`, by testing every tile.
+std::set<int> overlappingByHand(const TileGrid& grid, const PixelBounds& box) {
+    std::set<int> out;
+    for (int i = 0; i < grid.count(); ++i)
+        if (grid.tile(i).overlaps(box)) out.insert(i);
+    return out;
+}
+
+std::set<int> members(const TileSet& set, const TileGrid& grid) {
+    std::set<int> out;
+    for (int i = 0; i < grid.count(); ++i)
+        if (set.contains(i)) out.insert(i);
+    return out;
+}
+
+}  // namespace
+
+// Seeded boxes, some past the grid's edges, on grids with an offset origin and clipped edge tiles: the
+// tile range, the set built from it, its bounds and overlaps agree with testing every tile.
+TEST(TileSet, OverlapsMatchTestingEveryTile) {
+    std::mt19937 rng(20261127);
+    std::uniform_int_distribution<int> corner(-30, 90), extent(0, 40);
+    const TileGrid grids[] = {TileGrid(64, 36, 16), TileGrid(-6, -6, 77, 50, 8)};
+    for (const TileGrid& grid : grids) {
+        for (int trial = 0; trial < 200; ++trial) {
+            const int x0 = corner(rng), y0 = corner(rng);
+            const PixelBounds box = PixelBounds::sized(x0, y0, extent(rng), extent(rng));
+            const std::set<int> expected = overlappingByHand(grid, box);
+            TileSet set = TileSet::none();
+            set.addOverlapping(grid, box);
+            EXPECT_EQ(members(set, grid), expected) << toString(box);
+            EXPECT_EQ(set.empty(), expected.empty());
+            EXPECT_EQ(set.size(grid), static_cast<int>(expected.size()));
+            const PixelBounds probe = PixelBounds::sized(corner(rng), corner(rng), extent(rng), extent(rng));
+            bool meets = false;
+            for (int i : expected) meets = meets || grid.tile(i).overlaps(probe);
+            EXPECT_EQ(set.overlaps(grid, probe), meets) << toString(box) << " " << toString(probe);
+            PixelBounds bounds;
+            for (int i : expected) bounds = bounds.empty() ? grid.tile(i) : bounds.unite(grid.tile(i));
+            EXPECT_EQ(set.bounds(grid), bounds);
+        }
+    }
+}
+
+// Intersection and difference against std::set, with "every tile" on either side.
+TEST(TileSet, AlgebraMatchesStdSet) {
+    const TileGrid grid(70, 40, 8);
+    std::mt19937 rng(7);
+    std::bernoulli_distribution coin(0.4);
+    for (int trial = 0; trial < 50; ++trial) {
+        TileSet a = TileSet::none(), b = TileSet::none();
+        std::set<int> sa, sb, all;
+        for (int i = 0; i < grid.count(); ++i) {
+            all.insert(i);
+            if (coin(rng)) {
+                a.addOverlapping(grid, grid.tile(i));
+                sa.insert(i);
+            }
+            if (coin(rng)) {
+                b.addOverlapping(grid, grid.tile(i));
+                sb.insert(i);
+            }
+        }
+        std::set<int> both, a_not_b, every_not_b;
+        for (int i : sa) (sb.count(i) ? both : a_not_b).insert(i);
+        for (int i : all)
+            if (!sb.count(i)) every_not_b.insert(i);
+        EXPECT_EQ(members(a.intersect(b), grid), both);
+        EXPECT_EQ(members(a.minus(b), grid), a_not_b);
+        EXPECT_EQ(members(TileSet().minus(b), grid), every_not_b);
+        EXPECT_EQ(members(TileSet().intersect(b), grid), sb);
+        EXPECT_EQ(members(a.intersect(TileSet()), grid), sa);
+        EXPECT_TRUE(a.minus(TileSet()).empty());
+    }
+    EXPECT_TRUE(TileSet().every());
+    EXPECT_EQ(TileSet().size(grid), grid.count());
+    EXPECT_TRUE(TileSet().minus(TileSet::none()).every());
+    EXPECT_TRUE(TileSet::none().empty());
+}
+
+}  // namespace clipblur
