@@ -55,7 +55,7 @@ struct RenderSettings {
     int subframes = 0;         // clipped: 0 means automatic (paper eq. 24)
     int max_subframes = 256;
     int segments = 0;          // clipped: shutter segments with their own fragment sets; 0 means auto
-    int max_segments = 16;
+    int max_segments = 32;
     PathMethod path_method = PathMethod::Exact;
     int ode_steps = 16;        // per subframe interval, Euler and RK4 only
     // Subframes: the paper's point samples, every subframe re-clipped. Sweep: a subframe's re-clipped
