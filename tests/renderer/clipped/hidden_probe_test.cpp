@@ -221,7 +221,8 @@ TEST(HiddenProbe, SegmentsLeftHidingSomethingAtTheCapAreWarnedAbout) {
 // the hole (their sets are well under a third of the film's: splitsLocally), with fragment sets over
 // what is within their reach. Each pixel must be bit-identical to the whole-film render split in two (on
 // the hole) or to the unsplit render (elsewhere): a share counted twice or lost across the split's edge (sweep's tiles
-// spill over it; a fixed re-clip count is shared out by each tile's segments) matches neither. Point
+// spill over it; a fixed re-clip count is shared out by each tile's segments) matches neither; a shard
+// across that edge must have the whole film's pixels. Point
 // subframes get a grey quad crossing and receding in the far corner too, so that one and two segments
 // differ there: they sample its time apart.
 TEST(HiddenProbe, SplitTilesDrawTheHoleAndTheRestRendersUnsplit) {
@@ -296,6 +297,18 @@ TEST(HiddenProbe, SplitTilesDrawTheHoleAndTheRestRendersUnsplit) {
             }
         }
         EXPECT_GT(split_only, 0);
+        // A shard whose window crosses the split's edge has the whole film's pixels there.
+        j.render.segments = 0;
+        j.render.window = PixelBounds::corners(20, 10, 90, 70);
+        const RenderResult shard = renderFrame(j, 0);
+        int different = 0;
+        for (int y = 10; y < 70; ++y)
+            for (int x = 20; x < 90; ++x)
+                different += split.image.find("R")->values[split.image.index(x, y)] ==
+                                     shard.image.find("R")->values[shard.image.index(x, y)]
+                                 ? 0
+                                 : 1;
+        EXPECT_EQ(different, 0);
         if (!sweep) {
             EXPECT_GT(unsplit_only, 0);
             EXPECT_LT(worst_split, 1e-5);  // sweep's 1 re-clip in [0, 0.5] does not resolve the crossing
