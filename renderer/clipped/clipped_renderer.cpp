@@ -467,8 +467,9 @@ namespace {
 // Whether a segment over `tiles` that hides something in `where` is better split there only than over
 // all its tiles. Split there, it keeps fragment sets at both ends over its tiles and its halves get sets
 // at both ends and the middle over `where`'s reach: 2 + 3f sets of its size, f their size over its, where
-// a split of all its tiles builds 3 (one end's set serving both). Its tiles are integrated once and
-// `where`'s twice, against all twice, so it is the better when f < 1/3.
+// a split of all its tiles builds 3 (one end's set serving both): the better when f < 1/3. Integration
+// is left out: under sweep the halves also integrate every tile whose reach meets `where`, for what it
+// spills there, so a rule that counted only `where`'s tiles re-clipped the particles 24 % more.
 bool splitsLocally(const ClippedContext& ctx, const TileSet& tiles, const TileSet& where, int band) {
     const auto size = [&](const TileSet& t) { return fragmentGrid(ctx, t, band).count(); };
     return 3 * size(where) < size(tiles);
