@@ -159,11 +159,10 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
     const WindowSums& front = layers.front;
     const PixelSums& backdrop = layers.backdrop;
     const double weight = layers.weight;
-    const int size = grid.tileSize();
     parallelFor(window.y0, window.y1, [&](int y) {  // each pixel on its own
         for (int x = window.x0; x < window.x1; ++x) {
             const std::size_t i = window.index(x, y);
-            const int tile = (y / size) * grid.columns() + x / size;
+            const int tile = grid.indexOf(x, y);
             if (!layers.tiles.contains(tile)) continue;
             sums.addPixel(i, front);
             if (!layers.plan.backdrop[static_cast<std::size_t>(tile)]) continue;
