@@ -206,8 +206,10 @@ struct SegmentEnds {
 
 // The tiles a segment's fragment sets resolve: the film and a guard band `band` wide, aligned to the
 // band's corner, or where the segment renders part of the film, the part of that grid within reach of
-// it. A film tile there is integrated when its reach (its tile and a sweep apron no wider than the band
-// and 2 px) meets the part; its fragments are those within the band of that reach.
+// it. What reaches the part's pixels during the segment is within a sweep apron of it (a path's length
+// and 2 px; a segment's paths are nearly straight, turning 15 degrees at most, so a path is about twice
+// as long as its middle is far from its nearer end, at most 2 band), and in the sets within `band` of
+// where it is then: 3 band + 2, and a tile of slack.
 TileGrid fragmentGrid(const ClippedContext& ctx, const TileSet& tiles, int band) {
     const Film& film = ctx.job.scene.film;
     const int size = ctx.job.render.tile_size;
