@@ -149,8 +149,7 @@ void collectSpills(const TilePass& pass, const WeightedSubframes& subframes, dou
 int integrateTile(const SegmentIntegration& segment, int index, TileOutputs& out, ReclipStats& stats) {
     TilePass pass = planTile(segment, index);
     const PixelBounds reach = pass.sweep.box.x0 < pass.sweep.box.x1 ? pass.sweep.box : pass.tile;
-    if (!segment.window.overlaps(reach) || !segment.tiles.overlaps(segment.frame.grid, reach.intersect(segment.window)))
-        return -1;
+    if (!segment.tiles.overlaps(segment.frame.grid, reach.intersect(segment.window))) return -1;
     pass.layout = subframeLayout(segment.span, pass.n);
     const bool sweeping = segment.sweep != nullptr;
     std::vector<TileSums> sums(static_cast<std::size_t>(pass.n));
