@@ -490,9 +490,13 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
     if (stats.both_frames && settings.segments == 0 && visibilityCanChange(ctx.frame.motion.shutter())) {
         const int cap = std::max(ctx.job.scene.film.width, ctx.job.scene.film.height) / 2;
         const auto hidden = [&](const ShutterSegment& s) {
-            const int reach = guardBandPixels(ctx.frame.motion, ctx.frame.projection, ctx.frame.motion.window(s.begin, s.end), cap);
+            std::optional<int> band;  // the segment's guard band: a scan of the scene, so only where needed
+            const auto reach = [&] {
+                if (!band) band = guardBandPixels(ctx.frame.motion, ctx.frame.projection, ctx.frame.motion.window(s.begin, s.end), cap);
+                return *band;
+            };
             const TileSet where = hiddenTiles(ctx.frame, s, reach, probe);
-            return where.empty() || splitsLocally(ctx, s.tiles, where, reach) ? where : s.tiles;
+            return where.empty() || splitsLocally(ctx, s.tiles, where, reach()) ? where : s.tiles;
         };
         segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
     }

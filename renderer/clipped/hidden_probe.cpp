@@ -64,20 +64,24 @@ HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, d
 
 bool visibilityCanChange(const MotionWindow& window) { return !window.eye_still || window.anyObjectMoves(); }
 
-TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, int reach, HiddenProbe& total) {
+TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, const std::function<int()>& reach,
+                    HiddenProbe& total) {
     // The middle first: two objects crossing over one spot uncover it there.
     constexpr std::array<double, 3> kAt{0.5, 0.25, 0.75};
     const double a = segment.begin, b = segment.end;
-    const int r = reach + kProbeStride;
-    TileSet where = TileSet::none();
+    std::vector<glm::ivec2> hidden;
     for (std::size_t k = 0; k < kAt.size(); ++k) {
         const HiddenProbe probe =
             probeHiddenAtBothEnds(frame, a, b, a + (b - a) * kAt[k], static_cast<int>(k), segment.tiles);
         total.samples += probe.samples;
         total.hidden += probe.hidden;
-        for (const glm::ivec2& p : probe.pixels)
-            where.addOverlapping(frame.grid, PixelBounds::corners(p.x - r, p.y - r, p.x + r + 1, p.y + r + 1));
+        hidden.insert(hidden.end(), probe.pixels.begin(), probe.pixels.end());
     }
+    TileSet where = TileSet::none();
+    if (hidden.empty()) return where;
+    const int r = reach() + kProbeStride;
+    for (const glm::ivec2& p : hidden)
+        where.addOverlapping(frame.grid, PixelBounds::corners(p.x - r, p.y - r, p.x + r + 1, p.y + r + 1));
     return where.intersect(segment.tiles);
 }
 

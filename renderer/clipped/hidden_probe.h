@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -41,9 +42,11 @@ HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, d
 bool visibilityCanChange(const MotionWindow& window);
 
 // The tiles of segment.tiles where the probe, at times a quarter, half and three quarters into the
-// segment, finds a surface hidden at both its ends: those within `reach` pixels (how far anything moves
-// over the segment) plus a probe cell of a hidden point, since the surface can show anywhere it passes.
-// Empty when nothing is hidden. Counts every probe it ran into `total`.
-TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, int reach, HiddenProbe& total);
+// segment, finds a surface hidden at both its ends: those within reach() pixels (how far anything moves
+// over the segment; asked only when something is hidden, as measuring it scans the scene) plus a probe
+// cell of a hidden point, since the surface can show anywhere it passes. Empty when nothing is hidden.
+// Counts every probe it ran into `total`.
+TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, const std::function<int()>& reach,
+                    HiddenProbe& total);
 
 }  // namespace clipblur
