@@ -194,6 +194,7 @@ struct SegmentSpec {
     int index = 0;
     std::span<const int> bands;  // every segment's guard band (guardBandPixels), in order
     bool next_adjacent = false;  // the next segment begins where this one ends, over the same tiles: it opens with our closing set
+    std::span<const double> next_times;  // the next segment's ends: Embree keeps their scenes, frees the rest
 };
 
 // Step 1's result: the clipped, shaded fragment sets at the segment's ends and the still image at its start.
@@ -449,6 +450,7 @@ std::vector<std::vector<Spill>> integrateTiles(const ClippedContext& ctx, const 
 // backdrop's composite; adds weight x (the segment's average) to `sums`.
 void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums& sums, SegmentTotals& totals) {
     const SegmentEnds ends = buildSegmentEnds(ctx, seg, totals);
+    ctx.frame.embree.releaseSegmentScenes(seg.next_times);
     SegmentPlan plan;
     planSegment(ctx, seg, ends, totals, plan);
 
@@ -506,6 +508,9 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
                            std::to_string(settings.max_segments) + "); it may show as a hole");
     stats.segments = static_cast<long long>(segments.size());
     for (const ShutterSegment& s : segments) stats.segment_tiles += s.tiles.size(ctx.frame.grid);
+    // The probe's Embree scenes but those the first segment's fragment sets need.
+    const MotionWindow first = ctx.frame.motion.window(segments.front().begin, segments.front().end);
+    ctx.frame.embree.releaseSegmentScenes(std::array{first.t0, first.t1});
     stats.hidden_probe_samples = probe.samples;
     stats.hidden_probe_hits = probe.hidden;
     stats.seconds.hidden_probe = secondsSince(stage);
@@ -539,6 +544,8 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
     // A fixed count's share before a fraction of the shutter (1e-9: sums of 1/n reach whole numbers).
     const auto before = [&](double fraction) { return static_cast<int>(std::floor(fixed_total * fraction + 1e-9)); };
     for (std::size_t s = 0; s < segments.size(); ++s) {
+        const bool last = s + 1 == segments.size();
+        const std::array<double, 2> next = last ? std::array<double, 2>{} : std::array{windows[s + 1].t0, windows[s + 1].t1};
         const double share = shareBefore(segments, s);
         const int fixed = fixed_total > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
         const ShutterSegment& segment = segments[s];
@@ -551,7 +558,8 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
                                .index = static_cast<int>(s),
                                .bands = bands,
                                .next_adjacent = s + 1 < segments.size() && segments[s + 1].begin == segment.end &&
-                                                segments[s + 1].tiles == segment.tiles};
+                                                segments[s + 1].tiles == segment.tiles,
+                               .next_times = last ? std::span<const double>() : std::span<const double>(next)};
         renderSegment(ctx, spec, sums, totals);
     }
     totals.stats.seconds.segments = secondsSince(stage);

@@ -201,19 +201,48 @@ EmbreeScene::SceneHandle EmbreeScene::buildScene(std::size_t first, std::size_t 
     return scene;
 }
 
-std::pair<RTCScene, float> EmbreeScene::sceneAt(double t) const {
-    const auto time = static_cast<float>(embreeTime(t));
-    if (segment_count_ == 0) return {scene_.get(), time};
+std::pair<std::size_t, float> EmbreeScene::segmentAt(double t) const {
     // Embree's own time segment and fraction, exact in float: segment_count_ is a power of two.
     const auto segments = static_cast<float>(segment_count_);
-    const float scaled = time * segments;
+    const float scaled = static_cast<float>(embreeTime(t)) * segments;
     const float index = std::clamp(std::floor(scaled), 0.0f, segments - 1.0f);
-    const auto s = static_cast<std::size_t>(index);
+    return {static_cast<std::size_t>(index), scaled - index};
+}
+
+std::pair<RTCScene, float> EmbreeScene::sceneAt(double t) const {
+    if (segment_count_ == 0) return {scene_.get(), static_cast<float>(embreeTime(t))};
+    const auto [s, fraction] = segmentAt(t);
     Segment& segment = segments_[s];
-    // Isolated: while Embree's build waits for its own tasks this thread takes no other ray's task, which
-    // could ask for this segment again and wait for itself.
-    std::call_once(segment.built, [&] { tbb::this_task_arena::isolate([&] { segment.scene = buildScene(s, 2); }); });
-    return {segment.scene.get(), scaled - index};
+    RTCScene scene = segment.ready.load(std::memory_order_acquire);
+    if (!scene) {
+        std::lock_guard lock(segment.mutex);
+        // Isolated: while Embree's build waits for its own tasks this thread takes no other ray's task,
+        // which could ask for this segment again and wait for itself.
+        if (!segment.scene) tbb::this_task_arena::isolate([&, s = s] { segment.scene = buildScene(s, 2); });
+        scene = segment.scene.get();
+        segment.ready.store(scene, std::memory_order_release);
+    }
+    return {scene, fraction};
+}
+
+void EmbreeScene::releaseSegmentScenes(std::span<const double> keep) const {
+    std::vector<char> kept(static_cast<std::size_t>(segment_count_), 0);
+    for (const double t : keep)
+        if (segment_count_ > 0) kept[segmentAt(t).first] = 1;
+    bool freed = false;
+    for (std::size_t s = 0; s < kept.size(); ++s) {
+        Segment& segment = segments_[s];
+        if (kept[s] || !segment.scene) continue;
+        std::lock_guard lock(segment.mutex);
+        segment.ready.store(nullptr, std::memory_order_release);
+        segment.scene.reset();
+        freed = true;
+    }
+#ifdef __GLIBC__
+    // The build ran on worker threads, whose heap arenas keep freed pages from the main thread's
+    // allocations: 1920x1080 dense_mesh peaked 153 MiB higher without this.
+    if (freed) malloc_trim(0);
+#endif
 }
 
 int EmbreeScene::segmentScenesBuilt() const {

@@ -220,6 +220,33 @@ TEST(EmbreeScene, SegmentScenesAreBuiltWhenFirstAsked) {
     EXPECT_EQ(scene.segmentScenesBuilt(), 2);
 }
 
+// Freed segment scenes are rebuilt when a ray asks again, and answer as before: same hit, distance and
+// barycentrics, bit for bit (the same steps, built the same way).
+TEST(EmbreeScene, ReleasedSegmentScenesAreRebuiltAndAnswerAlike) {
+    const RenderJob job = spinningGridJob();
+    const EmbreeDevice device;
+    const EmbreeScene scene(device, FrameMotion(job.scene, 0.0, 1.0), nullptr, EmbreeScene::Layout::PerSegment);
+    const glm::dvec3 dir = test::worldAtRaster(131.5, 126.5, 1.0, 256);  // near the middle: on the grid at every time
+    const double times[] = {0.0, 0.3, 0.55, 1.0};  // segments 0, 4, 8 and 15 of 16
+    std::vector<EmbreeHit> before;
+    for (const double t : times) before.push_back(scene.intersect(glm::dvec3(0.0), dir, t));
+    ASSERT_EQ(scene.segmentScenesBuilt(), 4);
+    const double keep[] = {0.31, 0.999};  // in the segments of 0.3 and 1.0
+    scene.releaseSegmentScenes(keep);
+    EXPECT_EQ(scene.segmentScenesBuilt(), 2);
+    for (std::size_t i = 0; i < std::size(times); ++i) {
+        const EmbreeHit hit = scene.intersect(glm::dvec3(0.0), dir, times[i]);
+        ASSERT_TRUE(before[i].hit);
+        EXPECT_EQ(hit.triangle, before[i].triangle) << "t " << times[i];
+        EXPECT_EQ(hit.u, before[i].u);
+        EXPECT_EQ(hit.v, before[i].v);
+        EXPECT_EQ(hit.distance, before[i].distance);
+    }
+    EXPECT_EQ(scene.segmentScenesBuilt(), 4);
+    scene.releaseSegmentScenes({});
+    EXPECT_EQ(scene.segmentScenesBuilt(), 0);
+}
+
 // Moving objects with different step counts cut the shutter differently: one scene holds every step.
 TEST(EmbreeScene, UnequalStepCountsKeepOneScene) {
     RenderJob job = spinningGridJob();
