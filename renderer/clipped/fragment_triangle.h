@@ -22,10 +22,17 @@ struct FragmentTriangle {
 
 class OdePropagator;
 
-// A fragment triangle of frame 0 (layer 0) or frame 1 (layer 1).
-struct FragmentRef {
-    std::uint32_t index = 0;
-    std::uint8_t layer = 0;
+// A fragment triangle of frame 0 (layer 0) or frame 1 (layer 1), in 4 bytes: a segment's tiles hold
+// about ten per fragment triangle. index < 2^31.
+class FragmentRef {
+public:
+    FragmentRef() = default;
+    FragmentRef(std::uint32_t index, std::uint32_t layer) : bits_(index << 1 | (layer & 1u)) {}
+    std::uint32_t index() const { return bits_ >> 1; }
+    std::uint32_t layer() const { return bits_ & 1u; }
+
+private:
+    std::uint32_t bits_ = 0;
 };
 
 // The fragment triangles of both frames and per triangle its open-to-close raster motion (for the AOV).

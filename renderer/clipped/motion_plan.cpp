@@ -3,28 +3,31 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <numeric>
 
 #include "renderer/parallel_time.h"
 #include "renderer/thread_scratch.h"
+#include "scene/error.h"
 #include "scene/object_motion.h"
 
 namespace clipblur {
 
 namespace {
 
-// Takes the fragment triangles of backdrop objects out of `refs` when every moving one stays nearer than
-// all of them over the segment (depth is affine over a fragment, so its vertices' depth range bounds every
-// point); true when it did. What moves in front then only changes how much of the backdrop each pixel
+// Whether the fragment triangles of backdrop objects can be taken out of `refs`: every moving one stays
+// nearer than all of them over the segment (depth is affine over a fragment, so its vertices' depth range
+// bounds every point). What moves in front then only changes how much of the backdrop each pixel
 // sees, which the swept coverage gives: no re-clip needs to follow it. A moving fragment reaching the
 // camera plane has no bounded path, so it keeps the tile as it is.
 template <class ObjectOf>
-bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
+bool splitsBackdrop(std::span<const FragmentRef> refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
                    const std::vector<char>& backdrop_objects, ObjectOf object) {
     double moving_far = -std::numeric_limits<double>::infinity(), still_near = std::numeric_limits<double>::infinity();
     bool moving = false, still = false;
     for (const FragmentRef& ref : refs) {
-        const FragmentMotion& fm = motion[ref.layer][ref.index];
+        const FragmentMotion& fm = motion[ref.layer()][ref.index()];
         if (backdrop_objects[object(ref)]) {
             still = true;
             still_near = std::min(still_near, fm.min_depth);
@@ -34,9 +37,7 @@ bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<
             moving_far = std::max(moving_far, fm.max_depth);
         }
     }
-    if (!moving || !still || !(moving_far < still_near)) return false;
-    std::erase_if(refs, [&](const FragmentRef& ref) { return backdrop_objects[object(ref)] != 0; });
-    return true;
+    return moving && still && moving_far < still_near;
 }
 
 // How far surfaces that move differently in the world move relative to each other where they can meet in
@@ -49,7 +50,7 @@ bool splitBackdrop(std::vector<FragmentRef>& refs, const std::array<std::vector<
 // Surfaces that cross in mid-segment count though they are apart at both ends. The pairs come from a
 // sweep along x over the boxes sorted by their left edge; a tile with one group has none.
 template <class GroupOf>
-double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
+double relativeMotion(std::span<const FragmentRef> refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
                       const RasterBounds& tile, GroupOf group) {
     struct Item {
         RasterBounds box;  // swept box within the tile
@@ -64,7 +65,7 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
     items.clear();
     bool several = false;
     for (const FragmentRef& ref : refs) {
-        const FragmentMotion& fm = motion[ref.layer][ref.index];
+        const FragmentMotion& fm = motion[ref.layer()][ref.index()];
         if (fm.crosses_near) continue;
         const RasterBounds box{glm::max(fm.swept.lo, tile.lo), glm::min(fm.swept.hi, tile.hi)};
         if (box.empty()) continue;
@@ -93,13 +94,13 @@ double relativeMotion(const std::vector<FragmentRef>& refs, const std::array<std
 
 // The pixels of `tile` a re-clip of `refs` resolves, for the cost of one (integrationCost): each fragment
 // triangle's area at open shared out over its swept box by how much of the box lies in the tile, summed,
-// at most the tile's area. Backdrop fragments split off (splitBackdrop) are not in refs.
-double resolvedPixels(const std::vector<FragmentRef>& refs, const FragmentPaths& paths, const PixelBounds& tile) {
+// at most the tile's area. Backdrop fragments split off (splitsBackdrop) are not in refs.
+double resolvedPixels(std::span<const FragmentRef> refs, const FragmentPaths& paths, const PixelBounds& tile) {
     const double tile_area = static_cast<double>(tile.area());
     double covered = 0.0;
     for (const FragmentRef& ref : refs) {
-        const FragmentMotion& fm = paths.motion[ref.layer][ref.index];
-        const double area = paths.area[ref.layer][ref.index];
+        const FragmentMotion& fm = paths.motion[ref.layer()][ref.index()];
+        const double area = paths.area[ref.layer()][ref.index()];
         if (fm.crosses_near || !std::isfinite(area)) return tile_area;
         const glm::dvec2 size = fm.swept.hi - fm.swept.lo;
         const glm::dvec2 lo = glm::max(fm.swept.lo, glm::dvec2(tile.x0, tile.y0)),
@@ -113,6 +114,37 @@ double resolvedPixels(const std::vector<FragmentRef>& refs, const FragmentPaths&
 }
 
 }  // namespace
+
+TileBins::TileBins(const TileGrid& grid, const std::array<std::vector<FragmentMotion>, 2>& motion) {
+    for (const auto& m : motion)
+        if (m.size() >= std::size_t{1} << 31) throw Error(ExitCode::Render, "a fragment set of 2^31 triangles or more");
+    const double size = grid.tileSize();
+    // Calls f(tile, ref) for every tile each fragment's swept box overlaps, in ref order; every tile for a
+    // fragment reaching the camera plane.
+    const auto forEachBin = [&](auto&& f) {
+        for (std::uint8_t layer = 0; layer < 2; ++layer) {
+            const auto& m = motion[layer];
+            for (std::uint32_t i = 0; i < m.size(); ++i) {
+                const RasterBounds& box = m[i].swept;
+                int c0 = 0, c1 = grid.columns() - 1, r0 = 0, r1 = grid.rows() - 1;
+                if (!m[i].crosses_near) {
+                    c0 = static_cast<int>(std::clamp(std::floor(box.lo.x / size), 0.0, double(grid.columns())));
+                    c1 = static_cast<int>(std::clamp(std::floor(box.hi.x / size), -1.0, double(grid.columns() - 1)));
+                    r0 = static_cast<int>(std::clamp(std::floor(box.lo.y / size), 0.0, double(grid.rows())));
+                    r1 = static_cast<int>(std::clamp(std::floor(box.hi.y / size), -1.0, double(grid.rows() - 1)));
+                }
+                for (int r = r0; r <= r1; ++r)
+                    for (int c = c0; c <= c1; ++c) f(static_cast<std::size_t>(r * grid.columns() + c), FragmentRef{i, layer});
+            }
+        }
+    };
+    begin_.assign(static_cast<std::size_t>(grid.count()) + 1, 0);
+    forEachBin([&](std::size_t tile, FragmentRef) { ++begin_[tile + 1]; });
+    std::partial_sum(begin_.begin(), begin_.end(), begin_.begin());
+    refs_.resize(begin_.back());
+    std::vector<std::size_t> next(begin_.begin(), begin_.end() - 1);
+    forEachBin([&](std::size_t tile, FragmentRef ref) { refs_[next[tile]++] = ref; });
+}
 
 FragmentPaths measurePaths(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers) {
     const Scene& scene = frame.scene();
@@ -156,6 +188,7 @@ FragmentPaths measurePaths(const FrameSetup& frame, const MotionWindow& window, 
         });
         for (std::size_t i = 0; i < triangles->size(); ++i) paths.measured += window.stillInImage((*triangles)[i].object) ? 0 : 1;
     }
+    paths.bins = std::make_shared<const TileBins>(frame.grid, paths.motion);
     return paths;
 }
 
@@ -170,45 +203,34 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
     plan.measured = paths.measured;
 
     const int count = grid.count();
-    plan.refs.resize(static_cast<std::size_t>(count));
+    plan.bins = paths.bins;
     plan.backdrop.resize(static_cast<std::size_t>(count));
     plan.resolved.resize(static_cast<std::size_t>(count));
     plan.tiles.resize(static_cast<std::size_t>(count));
-    const double size = grid.tileSize();
-    for (int layer = 0; layer < 2; ++layer) {
-        const auto& m = motion[static_cast<std::size_t>(layer)];
-        for (std::uint32_t i = 0; i < m.size(); ++i) {
-            const RasterBounds& box = m[i].swept;
-            int c0 = 0, c1 = grid.columns() - 1, r0 = 0, r1 = grid.rows() - 1;
-            if (!m[i].crosses_near) {
-                c0 = static_cast<int>(std::clamp(std::floor(box.lo.x / size), 0.0, double(grid.columns())));
-                c1 = static_cast<int>(std::clamp(std::floor(box.hi.x / size), -1.0, double(grid.columns() - 1)));
-                r0 = static_cast<int>(std::clamp(std::floor(box.lo.y / size), 0.0, double(grid.rows())));
-                r1 = static_cast<int>(std::clamp(std::floor(box.hi.y / size), -1.0, double(grid.rows() - 1)));
-            }
-            plan.near_crossings += m[i].crosses_near ? 1 : 0;
-            for (int r = r0; r <= r1; ++r)
-                for (int c = c0; c <= c1; ++c)
-                    plan.refs[static_cast<std::size_t>(r * grid.columns() + c)].push_back(
-                        {i, static_cast<std::uint8_t>(layer)});
-        }
-    }
+    for (const auto& m : motion)
+        for (const FragmentMotion& fm : m) plan.near_crossings += fm.crosses_near ? 1 : 0;
 
-    const auto object = [&](const FragmentRef& ref) { return (*layers.triangles[ref.layer])[ref.index].object; };
+    const auto object = [&](const FragmentRef& ref) { return (*layers.triangles[ref.layer()])[ref.index()].object; };
     // Relative motion is between surfaces that move differently in the world, not between objects: a
     // surface cut into many objects that move together has none, as one object has none with itself.
     plan.groups = frame.motion.groups(window);
     const auto motionGroup = [&](const FragmentRef& ref) { return plan.groups[object(ref)]; };
+    if (sweep && !backdrop.empty() && !backdrop.behind_everything) plan.front.resize(static_cast<std::size_t>(count));
     parallelFor(0, count, [&](int index) {
-        auto& refs = plan.refs[static_cast<std::size_t>(index)];
-        if (sweep && !backdrop.empty())
-            plan.backdrop[static_cast<std::size_t>(index)] =
-                backdrop.behind_everything || splitBackdrop(refs, motion, backdrop.objects, object);
+        const auto t = static_cast<std::size_t>(index);
+        if (sweep && !backdrop.empty()) {
+            const std::span<const FragmentRef> all = (*plan.bins)[index];
+            plan.backdrop[t] = backdrop.behind_everything || splitsBackdrop(all, motion, backdrop.objects, object);
+            if (plan.backdrop[t] && !backdrop.behind_everything)
+                std::copy_if(all.begin(), all.end(), std::back_inserter(plan.front[t]),
+                             [&](const FragmentRef& ref) { return backdrop.objects[object(ref)] == 0; });
+        }
+        const std::span<const FragmentRef> refs = plan.refs(index);
         SubframePlan& p = plan.tiles[static_cast<std::size_t>(index)];
         p = SubframePlan{};
         plan.resolved[static_cast<std::size_t>(index)] = resolvedPixels(refs, paths, grid.tile(index));
         for (const FragmentRef& ref : refs) {
-            const FragmentMotion& fm = motion[ref.layer][ref.index];
+            const FragmentMotion& fm = motion[ref.layer()][ref.index()];
             ++p.fragments;
             // A fragment reaching the camera plane has unbounded image speed there: no subframe count
             // resolves it, and letting it set the count would cap every tile it may touch (all of them).
@@ -239,7 +261,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
             // Each fragment triangle's own open-to-close map gives it.
             double deviation = 0.0, unstretched = 0.0;
             for (const FragmentRef& ref : refs) {
-                const FragmentMotion& fm = motion[ref.layer][ref.index];
+                const FragmentMotion& fm = motion[ref.layer()][ref.index()];
                 if (fm.crosses_near) continue;
                 deviation = std::max(deviation, fm.parabola_deviation);
                 unstretched = std::max(unstretched, fm.unstretched_error);

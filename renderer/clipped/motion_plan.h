@@ -1,6 +1,8 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "renderer/clipped/still_backdrop.h"
@@ -10,9 +12,32 @@
 
 namespace clipblur {
 
+// Per tile, the fragment triangles whose swept box overlaps it (layer 0 first, each in index order), in
+// one array sized exactly: a segment bins them once, and its candidate plans share the bins.
+class TileBins {
+public:
+    TileBins(const TileGrid& grid, const std::array<std::vector<FragmentMotion>, 2>& motion);
+    std::span<const FragmentRef> operator[](int tile) const {
+        const auto t = static_cast<std::size_t>(tile);
+        return std::span<const FragmentRef>(refs_).subspan(begin_[t], begin_[t + 1] - begin_[t]);
+    }
+
+private:
+    std::vector<std::size_t> begin_;  // per tile where its refs begin, then the end
+    std::vector<FragmentRef> refs_;
+};
+
 // Which fragment triangles can reach each tile during the shutter, and how many subframes each tile needs.
 struct MotionPlan {
-    std::vector<std::vector<FragmentRef>> refs;  // per tile, layer 0 first, each in index order
+    std::shared_ptr<const TileBins> bins;
+    // Per tile whose backdrop fragments were split off (backdrop, unless they are behind everything):
+    // the rest, never empty (a split needs a moving fragment). Empty elsewhere: those tiles take the bins.
+    std::vector<std::vector<FragmentRef>> front;
+    // The fragment triangles the tile re-clips.
+    std::span<const FragmentRef> refs(int tile) const {
+        const auto t = static_cast<std::size_t>(tile);
+        return t < front.size() && !front[t].empty() ? std::span<const FragmentRef>(front[t]) : (*bins)[tile];
+    }
     std::vector<SubframePlan> tiles;
     // Per tile: true when its fragment triangles of backdrop objects were taken out of refs, because every
     // moving one that can reach the tile stays nearer than all of them for the whole segment. Elsewhere the
@@ -28,11 +53,13 @@ struct MotionPlan {
 };
 
 // Every fragment triangle's swept raster box, peak speed and path shape over a segment, per layer
-// (triangles of objects that do not move under a still camera are measured at t0 only).
+// (triangles of objects that do not move under a still camera are measured at t0 only), and the tiles
+// each can reach.
 struct FragmentPaths {
     std::array<std::vector<FragmentMotion>, 2> motion;
     std::array<std::vector<double>, 2> area;  // raster area at the segment's start; infinity behind the camera
     long long measured = 0;  // fragment triangles whose path was sampled
+    std::shared_ptr<const TileBins> bins;  // over the frame's tile grid
 };
 FragmentPaths measurePaths(const FrameSetup& frame, const MotionWindow& window, const FragmentLayers& layers);
 

@@ -21,8 +21,8 @@ void propagate(const TileReclip& tile, const ReclipTime& at, FragmentRef ref, Re
                ReclipStats& stats) {
     const MotionSnapshot& snapshot = at.snapshot;
     const OdePropagator* ode = tile.layers.ode;
-    const FragmentTriangle& t = (*tile.layers.triangles[ref.layer])[ref.index];
-    const float weight = static_cast<float>(ref.layer == 0 ? 1.0 - at.fraction : at.fraction);
+    const FragmentTriangle& t = (*tile.layers.triangles[ref.layer()])[ref.index()];
+    const float weight = static_cast<float>(ref.layer() == 0 ? 1.0 - at.fraction : at.fraction);
     const auto add = [&](const std::array<glm::dvec3, 3>& world, const SourceTriangle& source) {
         ScreenTriangle s;
         for (int i = 0; i < 3; ++i) {
@@ -31,7 +31,7 @@ void propagate(const TileReclip& tile, const ReclipTime& at, FragmentRef ref, Re
             s.inv_depth[i] = 1.0 / ip.depth;
         }
         s.source = static_cast<std::uint32_t>(scratch.screen.size());
-        s.layer = ref.layer;
+        s.layer = ref.layer();
         s.weight = weight;
         scratch.screen.push_back(s);
         scratch.origin.push_back(ref);
@@ -43,7 +43,7 @@ void propagate(const TileReclip& tile, const ReclipTime& at, FragmentRef ref, Re
         const MeshPoint point{t.object, t.triangle, t.bary[i]};
         std::optional<glm::dvec3> moved;
         if (ode) {
-            moved = ode->propagate(point, ref.layer, snapshot.time);
+            moved = ode->propagate(point, ref.layer(), snapshot.time);
             if (!moved) ++stats.ode_fallbacks;
         }
         if (moved) {
@@ -181,8 +181,8 @@ ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
     for (int k = 0; k < fragment.source_count; ++k) {
         const std::uint32_t s = fragment.sources[k].source;
         const FragmentRef ref = scratch.origin[s];
-        if (!layers.motion[ref.layer].empty())
-            shaded.motion += fragment.mix(k) * glm::dvec2(layers.motion[ref.layer][ref.index]);
+        if (!layers.motion[ref.layer()].empty())
+            shaded.motion += fragment.mix(k) * glm::dvec2(layers.motion[ref.layer()][ref.index()]);
         if (shade_once && k == 1) continue;
         const double m = shade_once ? 1.0 : fragment.mix(k);
         scratch.pieces.clear();

@@ -46,7 +46,7 @@ void reclipSubframes(const TilePass& pass, tbb::enumerable_thread_specific<Recli
     const Projection& projection = segment.frame.projection;
     const SweepSchedule* schedule = segment.sweep;
     const double ts = segment.span.t0, te = segment.span.t1, half = pass.layout.half;
-    const TileReclip reclip{scene,     segment.frame.shader, segment.layers, segment.motion.refs[static_cast<std::size_t>(pass.index)],
+    const TileReclip reclip{scene,     segment.frame.shader, segment.layers, segment.motion.refs(pass.index),
                             pass.tile, segment.audit};
     parallelFor(0, pass.n, [&](int k) {
         const auto i = static_cast<std::size_t>(k);
