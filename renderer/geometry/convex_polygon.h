@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -20,6 +21,17 @@ inline constexpr int kMaxStoredVertices = 12;
 struct ConvexPolygon {
     std::array<glm::dvec2, kMaxPolygonVertices> v;
     int n = 0;
+
+    ConvexPolygon() = default;
+    // Copies the n vertices in use only: most pieces have 3 to 6 of the 32 places, and clipping copies
+    // pieces at every cut.
+    ConvexPolygon(const ConvexPolygon& o) : n(o.n) { std::copy_n(o.v.begin(), o.n, v.begin()); }
+    ConvexPolygon& operator=(const ConvexPolygon& o) {
+        if (this == &o) return *this;
+        n = o.n;
+        std::copy_n(o.v.begin(), o.n, v.begin());
+        return *this;
+    }
 
     static ConvexPolygon triangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c);
 
