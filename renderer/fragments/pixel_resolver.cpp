@@ -66,21 +66,25 @@ void PixelResolver::insert(const ScreenTriangle& t) {
     for (int i = 0; i < piece.n; ++i) piece.v[i] -= origin;
     double area = 0.0;
     if (dropIfSliver(piece, area)) return;
-    insertPolygon(piece, plane, FragmentSource{t.source, t.layer, t.weight});
+    insertPolygon(piece, area, plane, FragmentSource{t.source, t.layer, t.weight});
 }
 
-void PixelResolver::queueWork(const ConvexPolygon& poly, std::size_t start) {
-    double area = 0.0;
-    if (dropIfSliver(poly, area)) return;
+void PixelResolver::queueWork(const ConvexPolygon& poly, std::size_t start, double area) {
+    if (area == kAreaUnknown && dropIfSliver(poly, area)) return;
+    if (poly.n <= kMaxStoredVertices) {
+        work_.push_back(Work{poly, start, area});
+        return;
+    }
     capped_.clear();
     splitToCapacity(poly, kMaxStoredVertices, capped_);
     for (const ConvexPolygon& c : capped_) work_.push_back(Work{c, start});
 }
 
-void PixelResolver::insertPolygon(const ConvexPolygon& local, const DepthPlane& plane, const FragmentSource& src) {
+void PixelResolver::insertPolygon(const ConvexPolygon& local, double area, const DepthPlane& plane,
+                                  const FragmentSource& src) {
     ++epoch_;
     work_.clear();
-    queueWork(local, 0);
+    queueWork(local, 0, area);
     Piece mine;
     mine.plane = plane;
     mine.sources[0] = src;
@@ -96,7 +100,7 @@ void PixelResolver::insertPolygon(const ConvexPolygon& local, const DepthPlane& 
             if (q.dead || q.epoch == epoch_ || !q.box.overlaps(box)) continue;
             consumed = resolve(w.poly, qi, plane, src);
         }
-        if (!consumed) addPiece(w.poly, mine);
+        if (!consumed) addPiece(w.poly, mine, w.area);
     }
 }
 
@@ -142,12 +146,12 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
         if (mixed.sources[0] == src) mixed.plane = plane;
         mixed.epoch = epoch_;
         shrinkPiece(qi, w, nullptr);
-        addPiece(overlap, mixed);
+        addPiece(overlap, mixed, overlap_area);
         return true;
     }
     if (!any_farther) {
         shrinkPiece(qi, w, nullptr);
-        addPiece(overlap, mine);
+        addPiece(overlap, mine, overlap_area);
         return true;
     }
     if (!any_nearer) return true;  // P hidden behind Q over the whole overlap
@@ -193,20 +197,25 @@ void PixelResolver::shrinkPiece(std::size_t qi, const ConvexPolygon& w, const Co
     remnants_.clear();
 }
 
-void PixelResolver::addPiece(const ConvexPolygon& poly, const Piece& data) {
-    double area = 0.0;
-    if (dropIfSliver(poly, area)) return;
-    capped_.clear();
-    splitToCapacity(poly, kMaxStoredVertices, capped_);
-    for (const ConvexPolygon& c : capped_) {
-        double piece_area = 0.0;
-        if (dropIfSliver(c, piece_area)) continue;  // a split can leave a sliver of a larger polygon
+void PixelResolver::addPiece(const ConvexPolygon& poly, const Piece& data, double area) {
+    if (area == kAreaUnknown && dropIfSliver(poly, area)) return;
+    const auto add = [&](const ConvexPolygon& c, double piece_area) {
         Piece p = data;
         p.poly = c;
         p.box = c.bounds();
         p.area = piece_area;
         p.dead = false;
         pieces_.push_back(p);
+    };
+    if (poly.n <= kMaxStoredVertices) {
+        add(poly, area);
+        return;
+    }
+    capped_.clear();
+    splitToCapacity(poly, kMaxStoredVertices, capped_);
+    for (const ConvexPolygon& c : capped_) {
+        double piece_area = 0.0;
+        if (!dropIfSliver(c, piece_area)) add(c, piece_area);  // a split can leave a sliver of a larger polygon
     }
 }
 

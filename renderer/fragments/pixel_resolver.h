@@ -61,16 +61,20 @@ private:
     struct Work {
         ConvexPolygon poly;
         std::size_t start = 0;  // first piece index not yet resolved against
+        double area = kAreaUnknown;
     };
+    // For a polygon whose area dropIfSliver has not found yet. Areas passed on are of polygons it kept, so
+    // the same polygon is not measured again on its way from clipping to a stored piece.
+    static constexpr double kAreaUnknown = -1.0;
 
-    void insertPolygon(const ConvexPolygon& local, const DepthPlane& plane, const FragmentSource& src);
+    void insertPolygon(const ConvexPolygon& local, double area, const DepthPlane& plane, const FragmentSource& src);
     // Resolves work polygon w against piece qi; returns false when they do not overlap.
     bool resolve(const ConvexPolygon& w, std::size_t qi, const DepthPlane& plane, const FragmentSource& src);
     // Appends poly (split to stored capacity, slivers dropped) as pieces with the given data.
-    void addPiece(const ConvexPolygon& poly, const Piece& data);
+    void addPiece(const ConvexPolygon& poly, const Piece& data, double area = kAreaUnknown);
     // Replaces piece qi by Q minus w (plus an optional extra part of Q).
     void shrinkPiece(std::size_t qi, const ConvexPolygon& w, const ConvexPolygon* keep);
-    void queueWork(const ConvexPolygon& poly, std::size_t start);
+    void queueWork(const ConvexPolygon& poly, std::size_t start, double area = kAreaUnknown);
     bool dropIfSliver(const ConvexPolygon& poly, double& area);
 
     ResolverSettings settings_;
