@@ -84,6 +84,50 @@ ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& pro
         unturn_open_ = glm::inverse(turns_.front());
         unturn_close_ = glm::inverse(turns_.back());
     }
+    straight_.assign(scene.objects.size(), 0);
+    if (breakpoints_.size() != 2 || !turns_.empty() || scene.camera.motion) return;
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        if (object.motion || deformsOver(object, t0, t1)) continue;
+        const RigidTransform a = evalTransform(object.transform, t0), b = evalTransform(object.transform, t1);
+        straight_[o] = a.rotate == b.rotate && a.scale == b.scale ? 1 : 0;
+    }
+}
+
+bool ShutterPathSampler::measureStraight(std::span<const MeshPoint> vertices, FragmentMotion& out) const {
+    const MotionSnapshot& open = nodes_.front().snapshot;
+    const MotionSnapshot& close = nodes_.back().snapshot;
+    std::array<glm::dvec2, 3> o{}, c{};
+    double max_speed = 0.0;
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+        const ProjectedPoint a = project(open, *scene_, vertices[k]), b = project(close, *scene_, vertices[k]);
+        if (a.behind || b.behind) return false;
+        out.swept.expand(a.raster);
+        out.swept.expand(b.raster);
+        out.min_depth = std::min({out.min_depth, a.depth, b.depth});
+        out.max_depth = std::max({out.max_depth, a.depth, b.depth});
+        // raster - centre = (A + B t) / z(t) with z linear: the velocity (B z0 - A z') / z^2 keeps its
+        // direction, and integrating it over the shutter gives the chord (B z0 - A z') T / (z_a z_b). So
+        // the path is its chord, and its speed, largest at the nearer end, is |chord| / T x z_far / z_near.
+        const double chord = glm::length(b.raster - a.raster);
+        out.max_path_pixels = std::max(out.max_path_pixels, chord);
+        max_speed = std::max(max_speed, chord / duration_ * std::max(a.depth / b.depth, b.depth / a.depth));
+        if (k < 3) {
+            o[k] = a.raster;
+            c[k] = b.raster;
+        }
+        out.start += a.raster / double(vertices.size());
+        out.end += b.raster / double(vertices.size());
+    }
+    out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
+    // The sweep's path is the homogeneous parabola through the positions at open, middle and close: for
+    // homogeneous coordinates linear in time, that line itself.
+    out.parabola_deviation = 0.0;
+    if (vertices.size() == 3) {
+        affineMotion(o, c, out);
+        sourceMap(vertices[0], out);
+    }
+    return true;
 }
 
 double ShutterPathSampler::pathLength(const MeshPoint& point) const {
@@ -98,6 +142,10 @@ double ShutterPathSampler::pathLength(const MeshPoint& point) const {
 
 FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) const {
     FragmentMotion out;
+    if (!vertices.empty() && std::all_of(vertices.begin(), vertices.end(), [&](const MeshPoint& v) { return straight(v.object); })) {
+        if (measureStraight(vertices, out)) return out;
+        out = FragmentMotion{};
+    }
     double max_speed = 0.0, max_depth_rate = 0.0;
     struct Positions {
         std::vector<glm::dvec3> raster;  // raster x, y and depth

@@ -82,9 +82,18 @@ public:
 
     const std::vector<double>& breakpoints() const { return breakpoints_; }  // t0, keys inside, t1
 
+    // Whether every surface point of the object moves on a straight image line over the shutter, so that
+    // measure takes its paths from their ends alone: one piece (no key inside), a camera that does not
+    // turn and moves on a line, and an object that translates on a line without turning, scaling or
+    // deforming. Its camera-space position is then linear in time.
+    bool straight(std::uint32_t object) const { return straight_[object] != 0; }
+
 private:
     // FragmentMotion::open_to_close of point's triangle, and its corners at open (source_open).
     void sourceMap(const MeshPoint& point, FragmentMotion& out) const;
+    // measure for vertices on straight paths (straight()); false when a vertex is behind the camera at
+    // an end, which the sampled measure handles.
+    bool measureStraight(std::span<const MeshPoint> vertices, FragmentMotion& out) const;
 
     struct Node {
         MotionSnapshot snapshot;
@@ -100,6 +109,7 @@ private:
     glm::dmat3 unturn_open_{1.0}, unturn_close_{1.0};
     double max_gap_ = 0.0;
     double duration_ = 0.0;
+    std::vector<char> straight_;  // per object (straight)
 };
 
 struct SubframePlan {
