@@ -4,6 +4,7 @@
 #include "renderer/thread_scratch.h"
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -47,11 +48,52 @@ void affineMotion(const std::array<glm::dvec2, 3>& open, const std::array<glm::d
     }
 }
 
+// A thread's corners of the mesh triangle it last measured, at every node of one sampler and then at
+// mid-shutter: fragments of one triangle mostly follow each other in a fragment set, and a fragment
+// vertex's camera-relative position and rate are its barycentric combination of its triangle's corners'.
+struct TriangleCorners {
+    std::uint64_t sampler = 0;  // ShutterPathSampler::id_ of the sampler that filled it; 0: none
+    std::uint32_t object = 0, triangle = 0;
+    bool filled = false;  // `at` holds this triangle's corners
+    std::vector<std::array<CameraRelative, 3>> at;
+};
+
+CameraRelative combine(const std::array<CameraRelative, 3>& c, const glm::dvec3& b) {
+    return {b[0] * c[0].d + b[1] * c[1].d + b[2] * c[2].d, b[0] * c[0].g + b[1] * c[1].g + b[2] * c[2].g};
+}
+
+std::atomic<std::uint64_t> next_sampler_id{1};
+
 }  // namespace
+
+const std::vector<std::array<CameraRelative, 3>>* ShutterPathSampler::cornersOf(const MeshPoint& point) const {
+    TriangleCorners& c = threadScratch<TriangleCorners>();
+    if (c.sampler != id_ || c.object != point.object || c.triangle != point.triangle) {
+        // A triangle's first fragment in a run is projected vertex by vertex: where each triangle has
+        // one fragment (a dense mesh), filling its corners would cost more than it saves.
+        c.sampler = id_;
+        c.object = point.object;
+        c.triangle = point.triangle;
+        c.filled = false;
+        return nullptr;
+    }
+    if (!c.filled) {
+        c.at.resize(nodes_.size() + 1);
+        for (std::size_t i = 0; i < c.at.size(); ++i)
+            for (int j = 0; j < 3; ++j) {
+                MeshPoint corner{point.object, point.triangle, glm::dvec3(0.0)};
+                corner.b[j] = 1.0;
+                c.at[i][static_cast<std::size_t>(j)] = cameraRelative(i < nodes_.size() ? nodes_[i].snapshot : middle_, *scene_, corner);
+            }
+        c.filled = true;
+    }
+    return &c.at;
+}
 
 ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
                                        int intervals_per_piece)
-    : scene_(&scene), middle_(scene, projection, 0.5 * (t0 + t1)), duration_(std::max(0.0, t1 - t0)) {
+    : scene_(&scene), middle_(scene, projection, 0.5 * (t0 + t1)), duration_(std::max(0.0, t1 - t0)),
+      id_(next_sampler_id++) {
     breakpoints_.push_back(t0);
     addKeyTimes(breakpoints_, t0, t1, scene.camera.keys);
     for (const Object& object : scene.objects) addMotionKeyTimes(object, t0, t1, breakpoints_);
@@ -154,11 +196,21 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
     const double t0 = nodes_.front().snapshot.time;
     std::array<glm::dvec2, 3> open{}, close{};
     std::size_t ends = 0;  // vertices with both end positions
+    const bool one_triangle = std::all_of(vertices.begin(), vertices.end(), [&](const MeshPoint& v) {
+        return v.object == vertices[0].object && v.triangle == vertices[0].triangle;
+    });
+    const std::vector<std::array<CameraRelative, 3>>* corners = one_triangle && !vertices.empty() ? cornersOf(vertices[0]) : nullptr;
+    // Node i's projection of a vertex (i == nodes_.size(): mid-shutter).
+    const auto motionAt = [&](std::size_t i, const MeshPoint& vertex) {
+        const MotionSnapshot& at = i < nodes_.size() ? nodes_[i].snapshot : middle_;
+        return corners ? projectMotion(at, combine((*corners)[i], vertex.b)) : projectMotion(at, *scene_, vertex);
+    };
     for (const MeshPoint& vertex : vertices) {
         double length = 0.0;
         positions.clear();
-        for (const Node& node : nodes_) {
-            const ProjectedMotion m = projectMotion(node.snapshot, *scene_, vertex);
+        for (std::size_t i = 0; i < nodes_.size(); ++i) {
+            const Node& node = nodes_[i];
+            const ProjectedMotion m = motionAt(i, vertex);
             if (m.point.behind) {
                 out.crosses_near = true;
                 continue;
@@ -183,7 +235,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             ++ends;
             out.start += a / double(vertices.size());
             out.end += b / double(vertices.size());
-            const ProjectedPoint mid = project(middle_, *scene_, vertex);
+            const ProjectedPoint mid = motionAt(nodes_.size(), vertex).point;
             if (!mid.behind) {
                 // What a one-interval sweep follows (SweepPath: the homogeneous parabola through the
                 // positions and depths at open, mid-shutter and close, with the camera's turn taken out
@@ -206,7 +258,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
     if (ends == 3 && vertices.size() == 3) {
         affineMotion(open, close, out);
-        sourceMap(vertices[0], out);
+        sourceMap(vertices[0], out, corners);
     }
     if (out.crosses_near) {
         out.swept = RasterBounds::everything();
@@ -218,14 +270,18 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
     return out;
 }
 
-void ShutterPathSampler::sourceMap(const MeshPoint& point, FragmentMotion& out) const {
+void ShutterPathSampler::sourceMap(const MeshPoint& point, FragmentMotion& out,
+                                   const std::vector<std::array<CameraRelative, 3>>* corners) const {
     std::array<glm::dvec2, 3> open{}, close{};
     for (int i = 0; i < 3; ++i) {
         MeshPoint corner = point;
         corner.b = glm::dvec3(0.0);
         corner.b[i] = 1.0;
-        const ProjectedPoint a = project(nodes_.front().snapshot, *scene_, corner),
-                             b = project(nodes_.back().snapshot, *scene_, corner);
+        const auto at = [&](std::size_t node) {
+            const MotionSnapshot& s = nodes_[node].snapshot;
+            return corners ? projectMotion(s, (*corners)[node][static_cast<std::size_t>(i)]).point : project(s, *scene_, corner);
+        };
+        const ProjectedPoint a = at(0), b = at(nodes_.size() - 1);
         if (a.behind || b.behind) return;
         open[static_cast<std::size_t>(i)] = a.raster;
         close[static_cast<std::size_t>(i)] = b.raster;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
@@ -90,10 +91,16 @@ public:
 
 private:
     // FragmentMotion::open_to_close of point's triangle, and its corners at open (source_open).
-    void sourceMap(const MeshPoint& point, FragmentMotion& out) const;
+    // With `corners` (cornersOf), projects the corners from them.
+    void sourceMap(const MeshPoint& point, FragmentMotion& out,
+                   const std::vector<std::array<CameraRelative, 3>>* corners = nullptr) const;
     // measure for vertices on straight paths (straight()); false when a vertex is behind the camera at
     // an end, which the sampled measure handles.
     bool measureStraight(std::span<const MeshPoint> vertices, FragmentMotion& out) const;
+    // The camera-relative position and rate of point's triangle's corners at every node, then at
+    // mid-shutter, from this thread's cache; none when the thread last measured another triangle (or
+    // for another sampler), which the next call with this triangle then fills.
+    const std::vector<std::array<CameraRelative, 3>>* cornersOf(const MeshPoint& point) const;
 
     struct Node {
         MotionSnapshot snapshot;
@@ -110,6 +117,7 @@ private:
     double max_gap_ = 0.0;
     double duration_ = 0.0;
     std::vector<char> straight_;  // per object (straight)
+    std::uint64_t id_;             // unique per sampler: what a thread's cached corners belong to
 };
 
 struct SubframePlan {

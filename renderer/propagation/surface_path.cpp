@@ -171,26 +171,30 @@ std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projec
     return turns;
 }
 
-ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
+namespace {
+
+// World position and rate of a surface point at the snapshot's time.
+void worldMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point, glm::dvec3& world,
+                 glm::dvec3& world_rate) {
     const Object& object = scene.objects[point.object];
     const ObjectMotionState& state = snapshot.objects[point.object];
-    glm::dvec3 world, world_rate;
     if (state.exact) {
         world = exactPoint(object, *state.exact, point, &world_rate);
-    } else {
-        glm::dvec3 local_rate;
-        const glm::dvec3 local = objectSpacePoint(object, state, point, &local_rate);
-        const RigidTransform& xf = state.transform;
-        const glm::dvec3 rotated = xf.rotate * (xf.scale * local);
-        world = xf.translate + rotated;
-        world_rate = state.translate_rate + glm::cross(state.angular_velocity, rotated) +
-                     xf.rotate * (state.scale_rate * local + xf.scale * local_rate);
+        return;
     }
+    glm::dvec3 local_rate;
+    const glm::dvec3 local = objectSpacePoint(object, state, point, &local_rate);
+    const RigidTransform& xf = state.transform;
+    const glm::dvec3 rotated = xf.rotate * (xf.scale * local);
+    world = xf.translate + rotated;
+    world_rate = state.translate_rate + glm::cross(state.angular_velocity, rotated) +
+                 xf.rotate * (state.scale_rate * local + xf.scale * local_rate);
+}
 
+ProjectedMotion projectRelativeMotion(const MotionSnapshot& snapshot, const glm::dvec3& world, const glm::dvec3& d,
+                                      const glm::dvec3& g) {
     ProjectedMotion out;
-    const glm::dvec3 d = world - snapshot.camera.position;
     out.point = projectRelative(snapshot, world, d);
-    const glm::dvec3 g = (world_rate - snapshot.camera_velocity) + glm::cross(d, snapshot.camera_angular_velocity);
     out.depth_rate = glm::dot(snapshot.camera.e3, g);
     if (out.point.behind) return out;
     const double z = out.point.depth;
@@ -202,6 +206,29 @@ ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene
     const double k = snapshot.projection.pixelsPerUnit();
     out.raster_velocity = {k * p2_rate, -k * p1_rate};
     return out;
+}
+
+}  // namespace
+
+ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
+    glm::dvec3 world, world_rate;
+    worldMotion(snapshot, scene, point, world, world_rate);
+    const glm::dvec3 d = world - snapshot.camera.position;
+    const glm::dvec3 g = (world_rate - snapshot.camera_velocity) + glm::cross(d, snapshot.camera_angular_velocity);
+    return projectRelativeMotion(snapshot, world, d, g);
+}
+
+CameraRelative cameraRelative(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point) {
+    glm::dvec3 world, world_rate;
+    worldMotion(snapshot, scene, point, world, world_rate);
+    CameraRelative out;
+    out.d = world - snapshot.camera.position;
+    out.g = (world_rate - snapshot.camera_velocity) + glm::cross(out.d, snapshot.camera_angular_velocity);
+    return out;
+}
+
+ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const CameraRelative& relative) {
+    return projectRelativeMotion(snapshot, relative.d + snapshot.camera.position, relative.d, relative.g);
 }
 
 }  // namespace clipblur

@@ -92,4 +92,13 @@ std::vector<glm::dmat3> cameraTurns(const Scene& scene, const Projection& projec
 // coordinates p_i = e_i.d / e3.d have p_i' = (e_i.g - p_i e3.g) / (e3.d).
 ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point);
 
+// projectMotion's d and g for a surface point. Both are linear in its barycentrics (its world position
+// and rate are), so a mesh triangle's corners give them for every point of it.
+struct CameraRelative {
+    glm::dvec3 d{0.0}, g{0.0};
+};
+CameraRelative cameraRelative(const MotionSnapshot& snapshot, const Scene& scene, const MeshPoint& point);
+// The point with those d and g, as projectMotion projects it (world = d + rc).
+ProjectedMotion projectMotion(const MotionSnapshot& snapshot, const CameraRelative& relative);
+
 }  // namespace clipblur
