@@ -379,7 +379,7 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
 
 // What the tiles of a segment integrate: its span, weight and fixed count, its ends and its plan.
 SegmentIntegration integrationOf(const ClippedContext& ctx, const SegmentSpec& seg, const SegmentEnds& ends,
-                                 const SegmentPlan& plan) {
+                                 const SegmentPlan& plan, const SnapshotCache& snapshots) {
     const RenderSettings& settings = ctx.job.render;
     return {.frame = ctx.frame,
             .window = ctx.window,
@@ -394,7 +394,8 @@ SegmentIntegration integrationOf(const ClippedContext& ctx, const SegmentSpec& s
             .still_scene = ends.still_scene,
             .layers = plan.layers,
             .motion = plan.motion,
-            .sweep = plan.sweep ? &plan.intervals : nullptr};
+            .sweep = plan.sweep ? &plan.intervals : nullptr,
+            .snapshots = snapshots};
 }
 
 // With a backdrop in some tile (MotionPlan::backdrop), the sums the segment's front goes to, kept apart
@@ -457,7 +458,9 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     std::optional<WindowSums> front = backdropFront(ctx, plan, sums.colour.size(), totals);
     WindowSums& target = front ? *front : sums;
     const auto stage = Clock::now();
-    std::vector<std::vector<Spill>> spills = integrateTiles(ctx, seg, integrationOf(ctx, seg, ends, plan), target, totals.stats);
+    const SnapshotCache snapshots(ctx.job.scene, ctx.frame.projection);
+    std::vector<std::vector<Spill>> spills =
+        integrateTiles(ctx, seg, integrationOf(ctx, seg, ends, plan, snapshots), target, totals.stats);
     addSpills(spills, ctx.window, ctx.frame.grid.tileSize(), target);
     if (front) compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.tiles, seg.weight}, sums);
     totals.stats.seconds.tiles += secondsSince(stage);

@@ -43,7 +43,6 @@ void reclipSubframes(const TilePass& pass, tbb::enumerable_thread_specific<Recli
                      std::vector<TileSums>& sums, std::vector<ReclipStats>& stats) {
     const SegmentIntegration& segment = pass.segment;
     const Scene& scene = segment.frame.scene();
-    const Projection& projection = segment.frame.projection;
     const SweepSchedule* schedule = segment.sweep;
     const double ts = segment.span.t0, te = segment.span.t1, half = pass.layout.half;
     const TileReclip reclip{scene,     segment.frame.shader, segment.layers, segment.motion.refs(pass.index),
@@ -51,14 +50,11 @@ void reclipSubframes(const TilePass& pass, tbb::enumerable_thread_specific<Recli
     parallelFor(0, pass.n, [&](int k) {
         const auto i = static_cast<std::size_t>(k);
         const double t = pass.layout.times[i];
-        const MotionSnapshot snapshot(scene, projection, t);
-        std::optional<MotionSnapshot> begin, end;
+        const MotionSnapshot& snapshot = segment.snapshots.at(t);
         SweepInterval interval = pass.sweep;
         if (schedule) {
-            begin.emplace(scene, projection, t - half);
-            end.emplace(scene, projection, t + half);
-            interval.begin = &*begin;
-            interval.end = &*end;
+            interval.begin = &segment.snapshots.at(t - half);
+            interval.end = &segment.snapshots.at(t + half);
             interval.positions = schedule->positions[i];
             interval.tilt = pass.layout.tilts[i];
             const IntervalTurns& turn = schedule->turns[i];

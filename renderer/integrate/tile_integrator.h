@@ -10,6 +10,7 @@
 #include "renderer/frame_setup.h"
 #include "renderer/integrate/interval_layout.h"
 #include "renderer/integrate/window_sums.h"
+#include "renderer/propagation/snapshot_cache.h"
 
 namespace clipblur {
 
@@ -31,6 +32,7 @@ struct SegmentIntegration {
     const FragmentLayers& layers;
     const MotionPlan& motion;
     const SweepSchedule* sweep = nullptr;  // null: point subframes
+    const SnapshotCache& snapshots;        // at the re-clip times and sweep intervals' ends
 };
 
 // What the tiles of one segment write: their own pixels of the window directly (each tile owns them)
