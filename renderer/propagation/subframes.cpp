@@ -193,7 +193,6 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         std::vector<glm::dvec3> raster;  // raster x, y and depth
     };
     std::vector<glm::dvec3>& positions = threadScratch<Positions>().raster;
-    const double t0 = nodes_.front().snapshot.time;
     std::array<glm::dvec2, 3> open{}, close{};
     std::size_t ends = 0;  // vertices with both end positions
     const bool one_triangle = std::all_of(vertices.begin(), vertices.end(), [&](const MeshPoint& v) {
@@ -236,23 +235,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             out.start += a / double(vertices.size());
             out.end += b / double(vertices.size());
             const ProjectedPoint mid = motionAt(nodes_.size(), vertex).point;
-            if (!mid.behind) {
-                // What a one-interval sweep follows (SweepPath: the homogeneous parabola through the
-                // positions and depths at open, mid-shutter and close, with the camera's turn taken out
-                // and put back), at u = s + 1/2.
-                const SweepPath path = SweepPath::through({a, positions.front().z}, {mid.raster, mid.depth},
-                                                          {b, positions.back().z}, unturn_open_, unturn_close_);
-                if (turns_.empty() && !std::isfinite(path.reach()))
-                    out.parabola_deviation = std::numeric_limits<double>::infinity();
-                for (std::size_t i = 0; i < nodes_.size(); ++i) {
-                    const double s = (nodes_[i].snapshot.time - t0) / duration_ - 0.5;
-                    glm::dvec2 offset, stretch;
-                    path.place(s, turns_.empty() ? nullptr : &turns_[i], offset, stretch);
-                    const double miss = glm::length(glm::dvec2(positions[i]) - (mid.raster + offset));
-                    out.parabola_deviation = std::max(out.parabola_deviation,
-                                                      std::isfinite(miss) ? miss : std::numeric_limits<double>::infinity());
-                }
-            }
+            if (!mid.behind) out.parabola_deviation = std::max(out.parabola_deviation, parabolaDeviation(positions, mid));
         }
     }
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
@@ -268,6 +251,25 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         out.max_depth += max_depth_rate * max_gap_;
     }
     return out;
+}
+
+double ShutterPathSampler::parabolaDeviation(const std::vector<glm::dvec3>& positions, const ProjectedPoint& mid) const {
+    // What a one-interval sweep follows (SweepPath: the homogeneous parabola through the positions and
+    // depths at open, mid-shutter and close, with the camera's turn taken out and put back), at u = s + 1/2.
+    const glm::dvec2 a(positions.front()), b(positions.back());
+    const SweepPath path = SweepPath::through({a, positions.front().z}, {mid.raster, mid.depth}, {b, positions.back().z},
+                                              unturn_open_, unturn_close_);
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    double deviation = turns_.empty() && !std::isfinite(path.reach()) ? kInfinity : 0.0;
+    const double t0 = nodes_.front().snapshot.time;
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        const double s = (nodes_[i].snapshot.time - t0) / duration_ - 0.5;
+        glm::dvec2 offset, stretch;
+        path.place(s, turns_.empty() ? nullptr : &turns_[i], offset, stretch);
+        const double miss = glm::length(glm::dvec2(positions[i]) - (mid.raster + offset));
+        deviation = std::max(deviation, std::isfinite(miss) ? miss : kInfinity);
+    }
+    return deviation;
 }
 
 void ShutterPathSampler::sourceMap(const MeshPoint& point, FragmentMotion& out,

@@ -94,6 +94,9 @@ private:
     // With `corners` (cornersOf), projects the corners from them.
     void sourceMap(const MeshPoint& point, FragmentMotion& out,
                    const std::vector<std::array<CameraRelative, 3>>* corners = nullptr) const;
+    // A vertex's sampled positions' (raster, depth per node) largest distance from the path a sweep of
+    // one interval follows through them and `mid` (FragmentMotion::parabola_deviation).
+    double parabolaDeviation(const std::vector<glm::dvec3>& positions, const ProjectedPoint& mid) const;
     // measure for vertices on straight paths (straight()); false when a vertex is behind the camera at
     // an end, which the sampled measure handles.
     bool measureStraight(std::span<const MeshPoint> vertices, FragmentMotion& out) const;
