@@ -23,7 +23,7 @@ namespace {
 // camera plane has no bounded path, so it keeps the tile as it is.
 template <class ObjectOf>
 bool splitsBackdrop(std::span<const FragmentRef> refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
-                   const std::vector<char>& backdrop_objects, ObjectOf object) {
+                    const std::vector<char>& backdrop_objects, ObjectOf object) {
     double moving_far = -std::numeric_limits<double>::infinity(), still_near = std::numeric_limits<double>::infinity();
     bool moving = false, still = false;
     for (const FragmentRef& ref : refs) {
