@@ -11,9 +11,17 @@ namespace clipblur {
 
 namespace {
 
-std::filesystem::path writeTemp(const std::string& name, const std::string& text) {
-    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_obj";
+// The test's own directory: ctest runs tests side by side, and two that wrote bad0.obj in one directory
+// read each other's file.
+std::filesystem::path testFolder() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_obj" / info->name();
     std::filesystem::create_directories(dir);
+    return dir;
+}
+
+std::filesystem::path writeTemp(const std::string& name, const std::string& text) {
+    const auto dir = testFolder();
     std::ofstream(dir / name, std::ios::binary) << text;
     return dir / name;
 }
@@ -84,7 +92,7 @@ TEST(ObjLoader, RoundTripOfASmallFile) {
 
 TEST(ObjLoader, ErrorsCarryTheReferenceLocation) {
     const FileLoc ref{"job.yaml", 7, 10};
-    const auto missing = std::filesystem::path(::testing::TempDir()) / "clipblur_obj" / "missing.obj";
+    const auto missing = testFolder() / "missing.obj";
     try {
         loadObjMesh(missing, ref, 100);
         FAIL() << "expected an error";
@@ -175,7 +183,7 @@ TEST(ObjLoader, PolygonsBecomeTrianglesOfTheirArea) {
 // triangles keep their corners' attributes, vt's v is flipped to t down, and the one `usemtl` names the
 // .mtl material (Kd, map_Kd relative to the .mtl file, which is in another folder than the OBJ).
 TEST(ObjLoader, NormalsUvsAndMaterialOfTheFaceCorners) {
-    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_obj";
+    const auto dir = testFolder();
     std::filesystem::create_directories(dir / "lib" / "maps");
     std::ofstream(dir / "lib" / "maps" / "wood.png") << "not read by the OBJ loader";
     std::ofstream(dir / "lib" / "wood.mtl") << "# a comment\nnewmtl other\nKd 1 0 0\n"
@@ -238,8 +246,7 @@ TEST(ObjLoader, BadAttributeIndicesAreLocated) {
 // Materials: a missing library, a missing texture file (located in the .mtl), an unknown material and a
 // second material in one file are scene errors at the line that names them.
 TEST(ObjLoader, MaterialErrorsAreLocated) {
-    const auto dir = std::filesystem::path(::testing::TempDir()) / "clipblur_obj";
-    std::filesystem::create_directories(dir);
+    const auto dir = testFolder();
     std::ofstream(dir / "two.mtl") << "newmtl a\nKd 1 1 1\nnewmtl b\nKd 0 0 0\n";
     std::ofstream(dir / "bad.mtl") << "newmtl a\nKd 1 1 1\nmap_Kd  nowhere.png\n";
     std::ofstream(dir / "negative.mtl") << "newmtl a\nKd 1 -1 1\n";
