@@ -560,7 +560,7 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
                                .tiles = segment.tiles,
                                .index = static_cast<int>(s),
                                .bands = bands,
-                               .next_adjacent = s + 1 < segments.size() && segments[s + 1].begin == segment.end &&
+                               .next_adjacent = !last && segments[s + 1].begin == segment.end &&
                                                 segments[s + 1].tiles == segment.tiles,
                                .next_times = last ? std::span<const double>() : std::span<const double>(next)};
         renderSegment(ctx, spec, sums, totals);

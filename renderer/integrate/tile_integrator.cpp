@@ -1,7 +1,6 @@
 #include "renderer/integrate/tile_integrator.h"
 
 #include <algorithm>
-#include <optional>
 #include <span>
 
 #include "renderer/clipped/time_error.h"

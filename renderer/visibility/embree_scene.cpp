@@ -226,9 +226,9 @@ std::pair<RTCScene, float> EmbreeScene::sceneAt(double t) const {
 }
 
 void EmbreeScene::releaseSegmentScenes(std::span<const double> keep) const {
+    if (segment_count_ == 0) return;
     std::vector<char> kept(static_cast<std::size_t>(segment_count_), 0);
-    for (const double t : keep)
-        if (segment_count_ > 0) kept[segmentAt(t).first] = 1;
+    for (const double t : keep) kept[segmentAt(t).first] = 1;
     bool freed = false;
     for (std::size_t s = 0; s < kept.size(); ++s) {
         Segment& segment = segments_[s];
