@@ -40,6 +40,27 @@ bool splitsBackdrop(std::span<const FragmentRef> refs, const std::array<std::vec
     return moving && still && moving_far < still_near;
 }
 
+// A box holding fm.displacementNear(x) for every x in `box`: the displacement is affine in x, so on the
+// source triangle it lies within its corners' values, and without one within the box's corners' values.
+// Padded well beyond the rounding of those evaluations (1e-12 of raster coordinates), so that pairs
+// skipped by it (relativeMotion) could not have raised the maximum.
+RasterBounds displacementRange(const FragmentMotion& fm, const RasterBounds& box) {
+    RasterBounds range;
+    if (fm.has_source) {
+        for (const glm::dvec2& corner : fm.source_open) range.expand(fm.displacement(corner));
+    } else {
+        for (const glm::dvec2& corner : {box.lo, box.hi, glm::dvec2(box.lo.x, box.hi.y), glm::dvec2(box.hi.x, box.lo.y)})
+            range.expand(fm.displacement(corner));
+    }
+    range.pad(1e-6 * (1.0 + std::max({std::abs(range.lo.x), std::abs(range.lo.y), std::abs(range.hi.x), std::abs(range.hi.y)})));
+    return range;
+}
+
+// The largest distance between a point of a and a point of b.
+double farthestApart(const RasterBounds& a, const RasterBounds& b) {
+    return glm::length(glm::max(a.hi - b.lo, b.hi - a.lo));
+}
+
 // How far surfaces that move differently in the world move relative to each other where they can meet in
 // `tile` (eq. 24's pixel rule, for what one hides of another): for every two fragment triangles of
 // different motion groups (`group`) whose swept boxes overlap within the tile, the largest difference of
@@ -56,6 +77,7 @@ double relativeMotion(std::span<const FragmentRef> refs, const std::array<std::v
         RasterBounds box;  // swept box within the tile
         std::uint32_t group;
         const FragmentMotion* motion;
+        RasterBounds reach;  // holds displacementNear of every point of box (displacementRange)
     };
     struct Scratch {
         std::vector<Item> items;
@@ -69,7 +91,7 @@ double relativeMotion(std::span<const FragmentRef> refs, const std::array<std::v
         if (fm.crosses_near) continue;
         const RasterBounds box{glm::max(fm.swept.lo, tile.lo), glm::min(fm.swept.hi, tile.hi)};
         if (box.empty()) continue;
-        items.push_back({box, group(ref), &fm});
+        items.push_back({box, group(ref), &fm, displacementRange(fm, box)});
         several = several || items.back().group != items.front().group;
     }
     if (!several) return 0.0;
@@ -81,7 +103,7 @@ double relativeMotion(std::span<const FragmentRef> refs, const std::array<std::v
         for (const Item* other : active) {
             if (other->group == item.group) continue;
             const RasterBounds meet{glm::max(item.box.lo, other->box.lo), glm::min(item.box.hi, other->box.hi)};
-            if (meet.empty()) continue;
+            if (meet.empty() || farthestApart(item.reach, other->reach) <= relative) continue;
             for (const glm::dvec2& corner :
                  {meet.lo, meet.hi, glm::dvec2(meet.lo.x, meet.hi.y), glm::dvec2(meet.hi.x, meet.lo.y)})
                 relative = std::max(relative, glm::length(item.motion->displacementNear(corner) -
