@@ -93,20 +93,6 @@ std::optional<PixelSums> midShutterDepth(const RenderJob& job, const FrameSetup&
     return sums;
 }
 
-// Per-frame motion vectors of fragment triangles (centroid, raster, shutter open to close).
-std::vector<glm::vec2> fragmentMotion(const FrameSetup& frame, const std::vector<FragmentTriangle>& triangles) {
-    const Scene& scene = frame.scene();
-    const MotionSnapshot open(scene, frame.projection, frame.motion.t0()), close(scene, frame.projection, frame.motion.t1());
-    std::vector<glm::vec2> motion(triangles.size());
-    parallelFor(std::size_t(0), triangles.size(), [&](std::size_t i) {
-        const FragmentTriangle& t = triangles[i];
-        const MeshPoint c{t.object, t.triangle, (t.bary[0] + t.bary[1] + t.bary[2]) / 3.0};
-        const ProjectedPoint a = project(open, scene, c), b = project(close, scene, c);
-        motion[i] = a.behind || b.behind ? glm::vec2(0.0f) : glm::vec2(b.raster - a.raster);
-    });
-    return motion;
-}
-
 // With render.audit set every resolved tile was checked by auditTile. A violation is a renderer bug, so
 // the render fails (no image is written) instead of returning a wrong picture, naming the stage of the
 // first violation. Returns the stages' audits merged.
@@ -132,6 +118,8 @@ struct ClippedContext {
     PixelBounds window;
     const ShutterCurve& curve;
     const Backdrop& backdrop;  // findBackdrop: empty when no backdrop can exist
+    // With the motion AOV, the frame at shutter open and close (FragmentLayers::shutter).
+    const std::optional<std::pair<MotionSnapshot, MotionSnapshot>>& shutter;
 };
 
 // A segment with a still backdrop (MotionPlan::backdrop): what moves in front covers a backdrop tile's
@@ -360,10 +348,7 @@ void planSegment(const ClippedContext& ctx, const SegmentSpec& seg, const Segmen
                                      .steps = settings.ode_steps});
         layers.ode = &*plan.ode;
     }
-    if (ctx.job.output.aov_motion) {  // motion vectors span the whole shutter
-        layers.motion[0] = fragmentMotion(ctx.frame, ends.open);
-        if (ends.both_frames) layers.motion[1] = fragmentMotion(ctx.frame, ends.close);
-    }
+    if (ctx.shutter) layers.shutter = {&ctx.shutter->first, &ctx.shutter->second};
     chooseIntegration(ctx, seg, plan, totals.stats);
     totals.stats.capped_tiles += plan.motion.capped_tiles;
     totals.stats.measured_fragment_paths += plan.motion.measured;
@@ -606,7 +591,10 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
                            callbacks);
     const FrameSetup& setup = build.setup();
     const ShutterCurve curve(job.shutter, frame);
-    const ClippedContext ctx{job, setup, renderWindow(job), curve, backdrop};
+    std::optional<std::pair<MotionSnapshot, MotionSnapshot>> shutter;
+    if (job.output.aov_motion)
+        shutter.emplace(MotionSnapshot(scene, setup.projection, motion.t0()), MotionSnapshot(scene, setup.projection, motion.t1()));
+    const ClippedContext ctx{job, setup, renderWindow(job), curve, backdrop, shutter};
     RenderResult result;
     SegmentTotals totals;
     ClippedStats& stats = totals.stats;

@@ -21,6 +21,7 @@ struct FragmentTriangle {
 };
 
 class OdePropagator;
+struct MotionSnapshot;
 
 // A fragment triangle of frame 0 (layer 0) or frame 1 (layer 1), in 4 bytes: a segment's tiles hold
 // about ten per fragment triangle. index < 2^31.
@@ -35,10 +36,12 @@ private:
     std::uint32_t bits_ = 0;
 };
 
-// The fragment triangles of both frames and per triangle its open-to-close raster motion (for the AOV).
+// The fragment triangles of both frames.
 struct FragmentLayers {
     std::array<const std::vector<FragmentTriangle>*, 2> triangles{};
-    std::array<std::vector<glm::vec2>, 2> motion;
+    // With the motion AOV, the shutter's open and close (the frame's, not a segment's): a re-clipped piece
+    // moves as the surface point at its centroid does between them. Null without the AOV.
+    std::array<const MotionSnapshot*, 2> shutter{};
     const OdePropagator* ode = nullptr;  // render.path_method euler/rk4: the paper's ODE, else exact paths
 };
 

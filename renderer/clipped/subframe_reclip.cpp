@@ -72,14 +72,30 @@ void propagate(const TileReclip& tile, const ReclipTime& at, FragmentRef ref, Re
     if (n == 4) add({w[0], w[2], w[3]}, {t.object, t.triangle, {b[0], b[2], b[3]}});
 }
 
+// The surface point that `sample` (a point of a screen triangle) finds on the source's mesh triangle.
+MeshPoint meshPointOf(const SourceTriangle& source, const SourceSample& sample) {
+    glm::dvec3 bary(0.0);
+    for (int i = 0; i < 3; ++i) bary += sample.bary[i] * source.bary[i];
+    return {source.object, source.triangle, bary};
+}
+
+// The motion AOV: how far the surface point of screen triangle s at raster point `at` moves from
+// shutter open to close; 0 where it is behind the camera at either.
+glm::dvec2 surfaceMotion(const TileReclip& tile, const ReclipScratch& scratch, std::uint32_t s, const glm::dvec2& at) {
+    SourceSample sample;
+    if (!evalSource(scratch.screen[s], at, sample)) return glm::dvec2(0.0);
+    const MeshPoint point = meshPointOf(scratch.sources[s], sample);
+    const ProjectedPoint a = project(*tile.layers.shutter[0], tile.scene, point),
+                         b = project(*tile.layers.shutter[1], tile.scene, point);
+    return a.behind || b.behind ? glm::dvec2(0.0) : b.raster - a.raster;
+}
+
 // The path of the surface point seen at the fragment's centroid `at` over the interval: through its exact
 // positions and depths at the interval's ends and `at` itself (sample: the centroid on the source screen
 // triangle). Nullopt when the point is behind the camera at either end.
 std::optional<SweepPath> sweepPath(const Scene& scene, const SweepInterval& sweep, const SourceTriangle& source,
                                    const SourceSample& sample, const glm::dvec2& at) {
-    glm::dvec3 bary(0.0);
-    for (int i = 0; i < 3; ++i) bary += sample.bary[i] * source.bary[i];
-    const MeshPoint point{source.object, source.triangle, bary};
+    const MeshPoint point = meshPointOf(source, sample);
     const ProjectedPoint a = project(*sweep.begin, scene, point), b = project(*sweep.end, scene, point);
     if (a.behind || b.behind) return std::nullopt;
     if (!sweep.turns) return SweepPath::through({a.raster, a.depth}, {at, 1.0 / sample.inv_depth}, {b.raster, b.depth});
@@ -157,7 +173,6 @@ struct ShadedFragment {
 ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
     ++pass.stats.fragments;
     if (fragment.source_count > 1) ++pass.stats.mixed;
-    const FragmentLayers& layers = pass.tile.layers;
     ReclipScratch& scratch = pass.scratch;
     ShadedFragment shaded;
     ConvexPolygon& polygon = shaded.polygon;
@@ -176,13 +191,12 @@ ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
         return a.object == b.object && a.triangle == b.triangle;
     };
     const bool shade_once = fragment.source_count == 2 && shadeOnce();
+    shaded.centroid = centroid(polygon);
     for (int k = 0; pass.out.track_objects && k < fragment.source_count; ++k)
         shaded.objects.add(static_cast<int>(scratch.sources[fragment.sources[k].source].object), fragment.mix(k));
     for (int k = 0; k < fragment.source_count; ++k) {
         const std::uint32_t s = fragment.sources[k].source;
-        const FragmentRef ref = scratch.origin[s];
-        if (!layers.motion[ref.layer()].empty())
-            shaded.motion += fragment.mix(k) * glm::dvec2(layers.motion[ref.layer()][ref.index()]);
+        if (pass.tile.layers.shutter[0]) shaded.motion += fragment.mix(k) * surfaceMotion(pass.tile, scratch, s, shaded.centroid);
         if (shade_once && k == 1) continue;
         const double m = shade_once ? 1.0 : fragment.mix(k);
         scratch.pieces.clear();
@@ -210,7 +224,6 @@ ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
         }
     }
     shaded.first = fragment.sources[0].source;
-    shaded.centroid = centroid(polygon);
     shaded.sampled = evalSource(scratch.screen[shaded.first], shaded.centroid, shaded.sample) && shaded.sample.inv_depth > 0.0;
     shaded.inv_depth = shaded.sampled ? shaded.sample.inv_depth : 0.0;
     return shaded;
