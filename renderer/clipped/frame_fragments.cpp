@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <span>
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -55,6 +57,66 @@ void emitPolygon(const ConvexPolygon& polygon, const ScreenTriangle& screen, con
     }
     for (int k = 1; k + 1 < polygon.n; ++k)
         out.push_back({source.object, source.triangle, {bary[0], bary[static_cast<std::size_t>(k)], bary[static_cast<std::size_t>(k + 1)]}});
+}
+
+// Whether the pixel's only fragment is the whole pixel square of one source: its four corners exactly.
+bool wholePixel(std::span<const Fragment> fragments, int x, int y) {
+    if (fragments.size() != 1 || fragments[0].source_count != 1 || fragments[0].vertex_count != 4) return false;
+    const glm::dvec2 corners[4] = {{x, y}, {x + 1, y}, {x + 1, y + 1}, {x, y + 1}};
+    for (int k = 0; k < 4; ++k)
+        if (std::find(std::begin(corners), std::end(corners), fragments[0].vertices[k]) == std::end(corners)) return false;
+    return true;
+}
+
+// The tile's whole pixels (wholePixel) of candidates not kept whole, as rectangles: each row's runs of one
+// candidate, merged with the run of the row above that spans the same columns. Emitted as fragment
+// triangles in place of a pair per pixel (the interior of a partly hidden wall becomes a few
+// rectangles); `done` marks their pixels. The output depends only on the tile's fragments.
+void emitWholeRectangles(const FragmentTile& fragments, const std::vector<std::uint32_t>& candidates,
+                         const std::vector<char>& merged, const FrameGeometry& frame, std::vector<char>& done,
+                         std::vector<FragmentTriangle>& out) {
+    const PixelBounds& tile = fragments.rect;
+    struct Rectangle {
+        int x0, x1, y0, y1;
+        std::uint32_t screen;  // the frame's triangle index
+    };
+    std::vector<Rectangle> open, next;
+    const auto emit = [&](const Rectangle& r) {
+        ConvexPolygon polygon;
+        for (const glm::dvec2& p : {glm::dvec2(r.x0, r.y0), glm::dvec2(r.x1, r.y0), glm::dvec2(r.x1, r.y1), glm::dvec2(r.x0, r.y1)})
+            polygon.push(p);
+        emitPolygon(polygon, frame.triangles()[r.screen], frame.source(r.screen), out);
+    };
+    const auto wholeOf = [&](int x, int y, std::uint32_t& screen) {
+        const auto pixel = fragments.pixel(x, y);
+        if (!wholePixel(pixel, x, y)) return false;
+        screen = pixel[0].sources[0].source;
+        const auto c = std::lower_bound(candidates.begin(), candidates.end(), screen) - candidates.begin();
+        return merged[static_cast<std::size_t>(c)] == 0;
+    };
+    done.assign(tile.area(), 0);
+    for (int y = tile.y0; y < tile.y1; ++y) {
+        next.clear();
+        for (int x = tile.x0; x < tile.x1;) {
+            std::uint32_t screen = 0, other = 0;
+            if (!wholeOf(x, y, screen)) {
+                ++x;
+                continue;
+            }
+            int end = x + 1;
+            while (end < tile.x1 && wholeOf(end, y, other) && other == screen) ++end;
+            for (int k = x; k < end; ++k) done[tile.index(k, y)] = 1;
+            const auto above = std::find_if(open.begin(), open.end(), [&](const Rectangle& r) {
+                return r.x0 == x && r.x1 == end && r.screen == screen;
+            });
+            next.push_back({x, end, above != open.end() ? above->y0 : y, y + 1, screen});
+            if (above != open.end()) open.erase(above);
+            x = end;
+        }
+        for (const Rectangle& r : open) emit(r);
+        open.swap(next);
+    }
+    for (const Rectangle& r : open) emit(r);
 }
 
 struct TileOutput {
@@ -146,6 +208,9 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
             emitPolygon(part, screen, frame.source(candidates[c]), out.triangles);
         }
 
+        std::vector<char> whole;
+        emitWholeRectangles(fragments, candidates, merged, frame, whole, out.triangles);
+
         std::vector<ShadedPiece> pieces;
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
@@ -160,7 +225,8 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
                     ConvexPolygon polygon;
                     for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
                     polygon.close();
-                    if (!merged[localIndex(screen_index)]) emitPolygon(polygon, screen, source, out.triangles);
+                    if (!merged[localIndex(screen_index)] && !whole[tile.index(x, y)])
+                        emitPolygon(polygon, screen, source, out.triangles);
                     if (!still || x < 0 || y < 0 || x >= width || y >= height) continue;  // guard band
                     pieces.clear();
                     shadeFragment(polygon, {screen, source}, setup.shader, {time, eye}, pieces);
