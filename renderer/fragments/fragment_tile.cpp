@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "renderer/check.h"
 #include "renderer/geometry/predicates.h"
@@ -41,9 +42,11 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
     if (npix == 0) return;
 
     scratch.entries.clear();
+    scratch.clippers.clear();
     for (std::size_t ti = 0; ti < triangles.size(); ++ti) {
         const ScreenTriangle& t = triangles[ti];
-        if (!validScreenTriangle(t)) {
+        scratch.clippers.emplace_back(t.raster);
+        if (!validScreenTriangle(t) || !scratch.clippers.back().valid()) {
             ++out.rejected_triangles;
             continue;
         }
@@ -83,6 +86,9 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         next[0] = 0;
     }
 
+    scratch.strips.resize(triangles.size());
+    scratch.strip_row.assign(triangles.size(), std::numeric_limits<int>::min());
+    ConvexPolygon piece;
     PixelResolver& resolver = scratch.resolver;
     resolver.setSettings(settings);
     for (std::size_t i = 0; i < npix; ++i) {
@@ -96,10 +102,18 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         const int x = rect.x0 + int(i % rect.width());
         const int y = rect.y0 + int(i / rect.width());
         resolver.reset(x, y);
-        for (auto it = begin; it != end; ++it) resolver.insert(triangles[it->triangle]);
-        const auto& frags = resolver.fragments();
-        for ([[maybe_unused]] const Fragment& f : frags) CLIPBLUR_DCHECK(wellFormed(f, x, y));
-        out.fragments.insert(out.fragments.end(), frags.begin(), frags.end());
+        for (auto it = begin; it != end; ++it) {
+            const std::uint32_t ti = it->triangle;
+            if (scratch.strip_row[ti] != y) {
+                scratch.clippers[ti].clipToStrip(y, y + 1.0, scratch.strips[ti]);
+                scratch.strip_row[ti] = y;
+            }
+            scratch.clippers[ti].clipToColumn(scratch.strips[ti], x, x + 1.0, piece);
+            resolver.insertClipped(triangles[ti], piece);
+        }
+        const std::size_t first = out.fragments.size();
+        resolver.appendFragments(out.fragments);
+        for (std::size_t f = first; f < out.fragments.size(); ++f) CLIPBLUR_DCHECK(wellFormed(out.fragments[f], x, y));
         out.covered_area[i] = resolver.coveredArea();
         out.dropped_area += resolver.droppedArea();
     }

@@ -7,6 +7,7 @@
 #include "renderer/fragments/fragment.h"
 #include "renderer/fragments/pixel_resolver.h"
 #include "renderer/fragments/screen_triangle.h"
+#include "renderer/geometry/pixel_clip.h"
 #include "scene/pixel_bounds.h"
 
 namespace clipblur {
@@ -37,6 +38,11 @@ struct TileScratch {
     std::vector<Entry> entries;
     std::vector<std::uint32_t> counts;
     std::vector<Entry> sorted;
+    // Per triangle: its clipper, and its part in the row of pixels being resolved (strip_row: which
+    // row, or none yet), so each triangle is clipped to a row once, not once per pixel.
+    std::vector<TriangleClipper> clippers;
+    std::vector<TriangleClipper::Piece> strips;
+    std::vector<int> strip_row;
     PixelResolver resolver;
 };
 

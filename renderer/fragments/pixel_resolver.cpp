@@ -53,15 +53,26 @@ void PixelResolver::insert(const ScreenTriangle& t) {
         return;
     }
     const TriangleClipper clipper(t.raster);
-    const glm::dvec2 origin(px_, py_);
-    DepthPlane plane;
-    if (!clipper.valid() || !inverseDepthPlane(t, origin, plane)) {
+    if (!clipper.valid()) {
         ++rejected_;
         return;
     }
     ConvexPolygon piece;
     clipper.clipToPixel(px_, py_, piece);
-    if (piece.degenerate()) return;
+    insertClipped(t, piece);
+}
+
+void PixelResolver::insertClipped(const ScreenTriangle& t, const ConvexPolygon& clipped) {
+    if (t.layer > 1) throw std::invalid_argument("ScreenTriangle::layer must be 0 or 1");
+    fragments_valid_ = false;
+    const glm::dvec2 origin(px_, py_);
+    DepthPlane plane;
+    if (!inverseDepthPlane(t, origin, plane)) {
+        ++rejected_;
+        return;
+    }
+    if (clipped.degenerate()) return;
+    ConvexPolygon piece = clipped;
     // Exact: every vertex lies in [px, px+1] x [py, py+1].
     for (int i = 0; i < piece.n; ++i) piece.v[i] -= origin;
     double area = 0.0;
@@ -230,19 +241,22 @@ double PixelResolver::coveredArea() const {
 const std::vector<Fragment>& PixelResolver::fragments() {
     if (fragments_valid_) return fragments_;
     fragments_.clear();
+    appendFragments(fragments_);
+    fragments_valid_ = true;
+    return fragments_;
+}
+
+void PixelResolver::appendFragments(std::vector<Fragment>& out) const {
     const glm::dvec2 origin(px_, py_);
     for (const Piece& p : pieces_) {
         if (p.dead) continue;
-        Fragment f;
+        Fragment& f = out.emplace_back();
         f.vertex_count = static_cast<std::uint8_t>(p.poly.n);
         for (int i = 0; i < p.poly.n; ++i) f.vertices[i] = p.poly.v[i] + origin;
         f.source_count = p.source_count;
         f.sources = p.sources;
         f.area = p.area;
-        fragments_.push_back(f);
     }
-    fragments_valid_ = true;
-    return fragments_;
 }
 
 }  // namespace clipblur

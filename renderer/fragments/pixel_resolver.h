@@ -40,9 +40,14 @@ public:
     void reset(int px, int py);
     // Ignores (and counts) triangles failing validScreenTriangle. Throws std::invalid_argument for layer > 1.
     void insert(const ScreenTriangle& t);
+    // insert for a triangle already validated and clipped to this pixel by its TriangleClipper (`piece`,
+    // raster space): what resolveTile does, which clips each triangle's row strip once per row.
+    void insertClipped(const ScreenTriangle& t, const ConvexPolygon& piece);
 
     // The fragments in raster space; the order is a pure function of the insertion sequence.
     const std::vector<Fragment>& fragments();
+    // Appends the same fragments to `out` (what resolveTile collects, without a copy in between).
+    void appendFragments(std::vector<Fragment>& out) const;
     double coveredArea() const;
     double droppedArea() const { return dropped_area_.value(); }
     long long rejectedTriangles() const { return rejected_; }
