@@ -17,6 +17,7 @@ struct ErrorTargetStats {
     long long subframes = 0;     // point subframes: the chosen count
     double reached_error = 0.0;  // what the choice was judged by: against the pilot, or the estimate
     bool against_pilot = false;  // the render was well coarser than the pilot and measured against it
+    bool pilot_kept = false;     // the coarser renders missed the target: the pilot is the result
 
     template <class Fields>
     void fields(Fields& f) const {
@@ -27,6 +28,7 @@ struct ErrorTargetStats {
         if (sweep_spacing > 0.0) f.value("sweep_spacing", sweep_spacing);
         if (subframes > 0) f.count("subframes", subframes);
         f.value(against_pilot ? "error_against_pilot" : "estimated_error", reached_error);
+        f.count("pilot_kept", pilot_kept ? 1 : 0);
     }
 };
 

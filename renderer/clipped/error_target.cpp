@@ -166,6 +166,12 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
         reached = errorOf(final_job, result);
     }
     ClippedStats previous = pilot.render.stats.clipped();
+    // A correction that did the work of the render before it (one sweep position per interval at every
+    // coarser spacing, as on the facade of many/building_dolly) shows a plateau: where that render
+    // missed the target against the pilot, no coarser setting meets it, and the pilot, made already, is
+    // the answer. So it is where the pilot has no estimate and the correction would leave the judgement
+    // against it (within kMeasuredRatio of the pilot's setting, or finer): nothing there could be judged.
+    bool keep_pilot = false, plateau = false;
     // Corrections where the model missed by more than 4/3: the order measured between the anchor and this
     // render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
     // than the pilot (renders are dear there), two where it is measured against it (they are cheap).
@@ -174,17 +180,31 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     // another render could only repeat it.
     for (int k = 0; k < (measured(final_job) ? 2 : 1) && !pilot.answer; ++k) {
         const double interval = tuning.intervalOf(final_job);
+        if (k > 0 && sameWork(previous, result.stats.clipped())) {
+            plateau = true;
+            break;
+        }
         if (!(reached > 0.0 && pilot.anchor_error > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
             std::abs(std::log(interval / pilot.anchor_interval)) <= 1e-6 || sameWork(previous, result.stats.clipped()))
             break;
         const double order = std::clamp(std::log(reached / pilot.anchor_error) / std::log(interval / pilot.anchor_interval), 1.0, 3.0);
         const RenderJob corrected = tuning.at(interval * std::pow(target / reached, 1.0 / order));
         if (tuning.intervalOf(corrected) == interval) break;
+        if (pilot.estimate <= 0.0 && reached > target && measured(final_job) && !measured(corrected)) {
+            keep_pilot = true;
+            break;
+        }
         final_job = corrected;
         previous = result.stats.clipped();
         result = renderClipped(final_job, frame, shown);
         ++renders;
         reached = errorOf(final_job, result);
+    }
+    keep_pilot = keep_pilot || (plateau && measured(final_job) && reached > target * 4.0 / 3.0);
+    if (keep_pilot) {
+        final_job = tuning.at(pilot.interval);
+        result = std::move(pilot.render);
+        reached = pilot.estimate;
     }
     if (job.render.window) {
         RenderJob shard = final_job;
@@ -200,7 +220,8 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
                                     .sweep_spacing = tuning.sweep ? final_job.render.sweep_spacing : 0.0,
                                     .subframes = tuning.sweep ? 0 : final_job.render.subframes,
                                     .reached_error = reached,
-                                    .against_pilot = measured(final_job)};
+                                    .against_pilot = measured(final_job),
+                                    .pilot_kept = keep_pilot};
     return result;
 }
 

@@ -262,6 +262,36 @@ TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
     for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
 }
 
+// A quad moving 1.9 px: at the pilot's 1 px two sweep positions per interval (no estimate; its exact
+// error is 5.6e-3), at every spacing from 2 px one (2.5e-2). For a target of 6e-3 every render coarser
+// than the pilot misses by 4x, and the correction from the first one, at order 1, lands below the
+// pilot's spacing, where nothing is judged against the pilot any more. The pilot is the answer: its
+// bits, its spacing, and an exact error within the issue's 0.5 .. 1.5 of the target.
+TEST(ErrorTarget, PilotIsKeptWhereEveryCoarserSpacingMissesTheTarget) {
+    constexpr double kTarget = 6e-3;
+    const glm::dvec2 v(1.9, 0.4);
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.render.time_integration = TimeIntegration::Sweep;
+    job.scene.objects.push_back(movingQuad(kX0, kY0, kX1, kY1, 6.0, v));
+    const RenderResult plain = renderFrame(job, 0);
+    job.render.error_target = kTarget;
+    const RenderResult r = renderFrame(job, 0);
+    const ErrorTargetStats& stats = *r.stats.clipped().target;
+    EXPECT_TRUE(stats.pilot_kept);
+    EXPECT_EQ(stats.sweep_spacing, 1.0);
+    for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
+    const std::vector<glm::dvec2> quad{{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}};
+    double sum = 0.0;
+    const std::vector<float>& red = r.image.find("R")->values;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            sum += std::pow(red[static_cast<std::size_t>(y * 32 + x)] - testing::translatingPixelCoverage(quad, v, x, y), 2);
+    const double error = std::sqrt(sum / (32.0 * 32.0));  // R = G = B: white under ambient 1
+    EXPECT_GT(error, 0.5 * kTarget);
+    EXPECT_LT(error, 1.5 * kTarget);
+}
+
 // Shards of one frame choose one setting: every render that chooses is of the whole film. A window over
 // the quad and one beside it (nothing there, so its own error would be 0) must both get the whole film's
 // spacing, and their pixels the whole film's bits. The target is one the quad's first render misses, so
@@ -288,3 +318,4 @@ TEST(ErrorTarget, ShardsOfAFrameChooseAlike) {
 }
 
 }  // namespace clipblur
+
