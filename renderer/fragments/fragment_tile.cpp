@@ -88,6 +88,7 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
 
     scratch.strips.resize(triangles.size());
     scratch.strip_row.assign(triangles.size(), std::numeric_limits<int>::min());
+    scratch.strip_x.resize(triangles.size());
     ConvexPolygon piece;
     PixelResolver& resolver = scratch.resolver;
     resolver.setSettings(settings);
@@ -105,9 +106,18 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         for (auto it = begin; it != end; ++it) {
             const std::uint32_t ti = it->triangle;
             if (scratch.strip_row[ti] != y) {
+                const ConvexPolygon& strip = scratch.strips[ti].poly;
                 scratch.clippers[ti].clipToStrip(y, y + 1.0, scratch.strips[ti]);
                 scratch.strip_row[ti] = y;
+                glm::dvec2 span(std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
+                for (int k = 0; k < strip.n; ++k) span = {std::min(span.x, strip.v[k].x), std::max(span.y, strip.v[k].x)};
+                scratch.strip_x[ti] = strip.degenerate() ? glm::dvec2(std::numeric_limits<double>::infinity(),
+                                                                       -std::numeric_limits<double>::infinity())
+                                                         : span;
             }
+            // Beside the strip, or touching it only along the pixel's side: no area (the clip would
+            // give at most a segment, or a zero-area sliver the resolver drops).
+            if (scratch.strip_x[ti].y <= x || scratch.strip_x[ti].x >= x + 1.0) continue;
             scratch.clippers[ti].clipToColumn(scratch.strips[ti], x, x + 1.0, piece);
             resolver.insertClipped(triangles[ti], piece);
         }

@@ -39,10 +39,12 @@ struct TileScratch {
     std::vector<std::uint32_t> counts;
     std::vector<Entry> sorted;
     // Per triangle: its clipper, and its part in the row of pixels being resolved (strip_row: which
-    // row, or none yet), so each triangle is clipped to a row once, not once per pixel.
+    // row, or none yet) with that part's x extent, so each triangle is clipped to a row once, not once
+    // per pixel, and not at all to the row's pixels beside it.
     std::vector<TriangleClipper> clippers;
     std::vector<TriangleClipper::Piece> strips;
     std::vector<int> strip_row;
+    std::vector<glm::dvec2> strip_x;  // lowest and highest x of the strip; lo > hi when it is empty
     PixelResolver resolver;
 };
 

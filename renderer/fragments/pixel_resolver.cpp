@@ -65,13 +65,13 @@ void PixelResolver::insert(const ScreenTriangle& t) {
 void PixelResolver::insertClipped(const ScreenTriangle& t, const ConvexPolygon& clipped) {
     if (t.layer > 1) throw std::invalid_argument("ScreenTriangle::layer must be 0 or 1");
     fragments_valid_ = false;
+    if (clipped.degenerate()) return;  // most pixels of a triangle's box outside it: no plane needed
     const glm::dvec2 origin(px_, py_);
     DepthPlane plane;
     if (!inverseDepthPlane(t, origin, plane)) {
         ++rejected_;
         return;
     }
-    if (clipped.degenerate()) return;
     ConvexPolygon piece = clipped;
     // Exact: every vertex lies in [px, px+1] x [py, py+1].
     for (int i = 0; i < piece.n; ++i) piece.v[i] -= origin;
