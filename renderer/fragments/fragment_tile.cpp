@@ -28,6 +28,25 @@ namespace {
     return std::abs(f.mix(0) + (f.source_count > 1 ? f.mix(1) : 0.0) - 1.0) < 1e-12;
 }
 
+// Triangle ti's part in pixel (x, y), cut from its strip of row y, which is clipped once per row; false
+// where the strip does not reach the pixel's column, or touches it only along its side (the clip would
+// give at most a segment, or a zero-area sliver the resolver drops).
+bool pixelPiece(TileScratch& scratch, std::uint32_t ti, int x, int y, ConvexPolygon& piece) {
+    if (scratch.strip_row[ti] != y) {
+        const ConvexPolygon& strip = scratch.strips[ti].poly;
+        scratch.clippers[ti].clipToStrip(y, y + 1.0, scratch.strips[ti]);
+        scratch.strip_row[ti] = y;
+        glm::dvec2 span(std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
+        if (!strip.degenerate())
+            for (int k = 0; k < strip.n; ++k) span = {std::min(span.x, strip.v[k].x), std::max(span.y, strip.v[k].x)};
+        scratch.strip_x[ti] = span;
+    }
+    const glm::dvec2& span = scratch.strip_x[ti];
+    if (span.y <= x || span.x >= x + 1.0) return false;
+    scratch.clippers[ti].clipToColumn(scratch.strips[ti], x, x + 1.0, piece);
+    return true;
+}
+
 }  // namespace
 
 void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& rect, const ResolverSettings& settings,
@@ -103,24 +122,8 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         const int x = rect.x0 + int(i % rect.width());
         const int y = rect.y0 + int(i / rect.width());
         resolver.reset(x, y);
-        for (auto it = begin; it != end; ++it) {
-            const std::uint32_t ti = it->triangle;
-            if (scratch.strip_row[ti] != y) {
-                const ConvexPolygon& strip = scratch.strips[ti].poly;
-                scratch.clippers[ti].clipToStrip(y, y + 1.0, scratch.strips[ti]);
-                scratch.strip_row[ti] = y;
-                glm::dvec2 span(std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
-                for (int k = 0; k < strip.n; ++k) span = {std::min(span.x, strip.v[k].x), std::max(span.y, strip.v[k].x)};
-                scratch.strip_x[ti] = strip.degenerate() ? glm::dvec2(std::numeric_limits<double>::infinity(),
-                                                                       -std::numeric_limits<double>::infinity())
-                                                         : span;
-            }
-            // Beside the strip, or touching it only along the pixel's side: no area (the clip would
-            // give at most a segment, or a zero-area sliver the resolver drops).
-            if (scratch.strip_x[ti].y <= x || scratch.strip_x[ti].x >= x + 1.0) continue;
-            scratch.clippers[ti].clipToColumn(scratch.strips[ti], x, x + 1.0, piece);
-            resolver.insertClipped(triangles[ti], piece);
-        }
+        for (auto it = begin; it != end; ++it)
+            if (pixelPiece(scratch, it->triangle, x, y, piece)) resolver.insertClipped(triangles[it->triangle], piece);
         const std::size_t first = out.fragments.size();
         resolver.appendFragments(out.fragments);
         for (std::size_t f = first; f < out.fragments.size(); ++f) CLIPBLUR_DCHECK(wellFormed(out.fragments[f], x, y));
