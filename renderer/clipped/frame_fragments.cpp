@@ -160,6 +160,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
     struct Scratch {
         CandidateScratch candidates;
         TileScratch tile;
+        FragmentTile fragments;  // a tile's pieces: kept, as fresh pages for each tile cost page faults
     };
     tbb::enumerable_thread_specific<Scratch> scratches;
     parallelFor(0, grid.count(), [&](int index) {
@@ -179,7 +180,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
         local.reserve(candidates.size());
         for (std::uint32_t c : candidates) local.push_back(frame.triangles()[c]);
 
-        FragmentTile fragments;
+        FragmentTile& fragments = scratch.fragments;
         resolveTile(local, tile, {}, scratch.tile, fragments);
         out.stats.rejected_triangles += fragments.rejected_triangles;
         out.stats.dropped_area += fragments.dropped_area;
