@@ -128,7 +128,7 @@ struct ClippedContext {
 // the backdrop under a moving edge in the same pixel is where it is not. `front` carries the segment's
 // weight; the backdrop image (film pixels) is the same for every segment.
 struct FrontOverBackdrop {
-    const WindowSums& front;
+    WindowSums& front;  // cleared where read, so the next segment can reuse it
     const PixelSums& backdrop;
     const MotionPlan& plan;
     const TileSet& tiles;  // the segment's
@@ -144,7 +144,7 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
     const TileGrid& grid = ctx.frame.grid;
     const PixelBounds& window = ctx.window;
     const PixelBounds film = ctx.job.scene.film.pixels();
-    const WindowSums& front = layers.front;
+    WindowSums& front = layers.front;
     const PixelSums& backdrop = layers.backdrop;
     const double weight = layers.weight;
     parallelFor(window.y0, window.y1, [&](int y) {  // each pixel on its own
@@ -153,11 +153,15 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
             const int tile = grid.indexOf(x, y);
             if (!layers.tiles.contains(tile)) continue;
             sums.addPixel(i, front);
-            if (!layers.plan.backdrop[static_cast<std::size_t>(tile)]) continue;
+            if (!layers.plan.backdrop[static_cast<std::size_t>(tile)]) {
+                front.clearPixel(i);
+                continue;
+            }
             const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
             const std::size_t p = film.index(x, y);
             sums.addStill(i, seen, backdrop, p);
             if (seen > 0.0 && seen < weight) sums.levels[i] += behindFront(front.levels[i], backdrop, p);
+            front.clearPixel(i);
         }
     });
 }
@@ -167,9 +171,25 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
 struct SegmentTotals {
     ClippedStats stats;
     std::optional<PixelSums> backdrop;  // the still backdrop's image, made when a segment first needs it
+    // What moves in front of it, zero between segments (compositeBackdrop clears what it reads): made
+    // once, as fresh pages for every segment were most of the particles' page faults.
+    std::optional<WindowSums> front;
     // The last segment's closing set with its still image: the next segment's opening set, at the same time.
     std::optional<std::pair<std::vector<FragmentTriangle>, PixelSums>> carried;
+    // Still images of finished segments, whose pages the next sets reuse (stillImage).
+    std::vector<PixelSums> spare_stills;
 };
+
+// A zeroed still image of the film, in a finished segment's memory where there is one.
+PixelSums stillImage(SegmentTotals& totals, std::size_t pixels, bool track_objects) {
+    PixelSums still;
+    if (!totals.spare_stills.empty()) {
+        still = std::move(totals.spare_stills.back());
+        totals.spare_stills.pop_back();
+    }
+    still.resize(pixels, track_objects);
+    return still;
+}
 
 // One shutter segment of the frame (what moves over it), its share of the shutter, and every segment's
 // guard band.
@@ -246,7 +266,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
         totals.carried.reset();
     } else {
         FrameFragmentStats open_stats;
-        ends.still.resize(film_pixels, track_objects);
+        ends.still = stillImage(totals, film_pixels, track_objects);
         ends.open = buildFrameFragments(ctx.frame, request(seg.window.t0), &ends.still, open_stats);
         totals.stats.open.merge(open_stats);
         ++totals.stats.frame_sets;
@@ -254,7 +274,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     if (ends.both_frames) {
         FrameFragmentStats close_stats;
         PixelSums next_still;
-        if (carry) next_still.resize(film_pixels, track_objects);
+        if (carry) next_still = stillImage(totals, film_pixels, track_objects);
         ends.close = buildFrameFragments(ctx.frame, request(seg.window.t1), carry ? &next_still : nullptr, close_stats);
         totals.stats.close.merge(close_stats);
         ++totals.stats.frame_sets;
@@ -384,15 +404,15 @@ SegmentIntegration integrationOf(const ClippedContext& ctx, const SegmentSpec& s
 }
 
 // With a backdrop in some tile (MotionPlan::backdrop), the sums the segment's front goes to, kept apart
-// until every spill is in; the backdrop's image is made when a segment first needs it.
-std::optional<WindowSums> backdropFront(const ClippedContext& ctx, const SegmentPlan& plan, std::size_t pixels,
-                                        SegmentTotals& totals) {
-    if (plan.motion.backdrop_tiles == 0) return std::nullopt;
-    std::optional<WindowSums> front(std::in_place, pixels, ctx.job.output.cryptomatte.enabled);
+// until every spill is in (null otherwise); they and the backdrop's image are made when a segment first
+// needs them.
+WindowSums* backdropFront(const ClippedContext& ctx, const SegmentPlan& plan, std::size_t pixels, SegmentTotals& totals) {
+    if (plan.motion.backdrop_tiles == 0) return nullptr;
+    if (!totals.front) totals.front.emplace(pixels, ctx.job.output.cryptomatte.enabled);
     if (!totals.backdrop)
         totals.backdrop = renderBackdrop(ctx.job, ctx.frame, ctx.backdrop, 0.5 * (ctx.frame.motion.t0() + ctx.frame.motion.t1()),
                                          totals.stats.backdrop.emplace());
-    return front;
+    return &*totals.front;
 }
 
 // Integrates every tile of the segment into `target` (integrateTile), with progress and cancellation;
@@ -435,12 +455,12 @@ std::vector<std::vector<Spill>> integrateTiles(const ClippedContext& ctx, const 
 // re-clips, integration of each tile, then the merge of what tiles spilled, in tile order, and a
 // backdrop's composite; adds weight x (the segment's average) to `sums`.
 void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums& sums, SegmentTotals& totals) {
-    const SegmentEnds ends = buildSegmentEnds(ctx, seg, totals);
+    SegmentEnds ends = buildSegmentEnds(ctx, seg, totals);
     ctx.frame.embree.releaseSegmentScenes(seg.next_times);
     SegmentPlan plan;
     planSegment(ctx, seg, ends, totals, plan);
 
-    std::optional<WindowSums> front = backdropFront(ctx, plan, sums.colour.size(), totals);
+    WindowSums* front = backdropFront(ctx, plan, sums.colour.size(), totals);
     WindowSums& target = front ? *front : sums;
     const auto stage = Clock::now();
     const SnapshotCache snapshots(ctx.job.scene, ctx.frame.projection);
@@ -448,6 +468,7 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
         integrateTiles(ctx, seg, integrationOf(ctx, seg, ends, plan, snapshots), target, totals.stats);
     addSpills(spills, ctx.window, ctx.frame.grid.tileSize(), target);
     if (front) compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.tiles, seg.weight}, sums);
+    totals.spare_stills.push_back(std::move(ends.still));
     totals.stats.seconds.tiles += secondsSince(stage);
 }
 

@@ -38,6 +38,15 @@ void WindowSums::addPixel(std::size_t i, const WindowSums& other) {
     levels[i] += other.levels[i];
 }
 
+void WindowSums::clearPixel(std::size_t i) {
+    colour[i] = glm::dvec3(0.0);
+    covered[i] = 0.0;
+    depth[i] = 0.0;
+    motion[i] = glm::dvec2(0.0);
+    if (!objects.empty()) objects[i].clear();
+    levels[i] = LevelDifference(0.0f);
+}
+
 void addSpills(std::vector<std::vector<Spill>>& spills, const PixelBounds& window, int band_rows, WindowSums& target) {
     const std::size_t band = static_cast<std::size_t>(band_rows) * static_cast<std::size_t>(window.width());
     if (band == 0) return;  // an empty window

@@ -40,6 +40,8 @@ struct WindowSums {
     void addStill(std::size_t i, double scale, const PixelSums& still, std::size_t p);
     // Adds pixel i of `other` (the same window) to pixel i.
     void addPixel(std::size_t i, const WindowSums& other);
+    // Pixel i as a new WindowSums has it: zero.
+    void clearPixel(std::size_t i);
 };
 
 // Adds the tiles' spills after all tiles, in tile order per pixel, so the sums do not depend on which
