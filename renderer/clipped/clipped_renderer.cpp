@@ -315,10 +315,11 @@ void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, Segmen
     const RenderSettings& settings = ctx.job.render;
     const FragmentPaths paths = measurePaths(ctx.frame, seg.window, plan.layers);
     // Sweep re-clips sample relative motion as positions sample each fragment's own: as far apart as the
-    // spacing, but never closer than a pixel (finer positions do not refine re-clips).
+    // spacing, finer too. A finer spacing that kept the re-clips would leave their error (visibility
+    // frozen over an interval, falling about as the spacing of relative motion) where it was.
     MotionPlanOptions options{.subframes = seg.subframes,
                               .max_subframes = settings.max_subframes,
-                              .reclip_spacing = std::max(1.0, settings.sweep_spacing),
+                              .reclip_spacing = settings.sweep_spacing,
                               .backdrop = ctx.backdrop};
     const bool automatic = settings.time_integration == TimeIntegration::Auto;
     if (automatic && seg.subframes == 0 && !ctx.backdrop.behind_everything) {

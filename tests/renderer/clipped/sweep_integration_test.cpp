@@ -50,8 +50,9 @@ double rmsDifference(const RenderResult& a, const RenderResult& b) {
     return std::sqrt(sum / double(n));
 }
 
-// A sweep with auto re-clips and positions 0.05 px apart (fine enough that what re-clips change is all
-// that is left), against 96 point subframes.
+// The auto re-clip count at sweep_spacing 1, and a sweep with that many re-clips and positions 0.05 px
+// apart (fine enough that what re-clips change is all that is left) against 96 point subframes. Auto
+// re-clips follow the spacing, so the count is taken at 1 px and then fixed.
 struct AutoSweep {
     long long reclips;
     double rms, max;
@@ -61,9 +62,11 @@ AutoSweep autoSweepAgainstPointSubframes(RenderJob job) {
     const RenderResult point = renderFrame(job, 0);
     job.render.time_integration = TimeIntegration::Sweep;
     job.render.subframes = 0;
+    const long long reclips = renderFrame(job, 0).stats.clipped().subframes_max_per_tile;
+    job.render.subframes = static_cast<int>(reclips);
     job.render.sweep_spacing = 0.05;
     const RenderResult sweep = renderFrame(job, 0);
-    return {sweep.stats.clipped().subframes_max_per_tile, rmsDifference(sweep, point), maxDifference(sweep, point)};
+    return {reclips, rmsDifference(sweep, point), maxDifference(sweep, point)};
 }
 
 // Sweep with `intervals` re-clips and exactly `positions` positions per interval for a quad moving by v.
@@ -107,9 +110,9 @@ void expectOneAutoReclipThenFallingError(const CameraKey& key, double depth, std
     job.render.subframes = 96;
     const RenderResult point = renderFrame(job, 0);
     job.render.time_integration = TimeIntegration::Sweep;
-    job.render.sweep_spacing = 0.02;
     job.render.subframes = 0;
-    EXPECT_EQ(renderFrame(job, 0).stats.clipped().subframes_max_per_tile, 1);
+    EXPECT_EQ(renderFrame(job, 0).stats.clipped().subframes_max_per_tile, 1);  // at sweep_spacing 1
+    job.render.sweep_spacing = 0.02;
     double previous = 0.0;
     for (const int n : intervals) {
         job.render.subframes = n;
@@ -327,17 +330,16 @@ TEST(SweepIntegration, OcclusionErrorFallsWithReclips) {
     EXPECT_GE(automatic.stats.clipped().subframes_max_per_tile, 16);
 }
 
-// Automatic re-clips are spaced like positions, coarser only: at sweep_spacing s >= 1 surfaces move
-// s px relative to each other between re-clips, and the path tolerances (0.1 px at s = 1) grow to 0.1 s.
-// Relative motion |v - w| = |(15.5, 2.4)| = 15.7 px gives ceil(15.7 / s) re-clips: 16, 8, 4 at s = 1, 2, 4,
-// and 16 still at s = 0.25. A roll of 1 rad strays 0.339 px (AutoReclipsFollowRollButNotStretch):
-// ceil(3.39 / s) = 4, 2, 1 at s = 1, 2, 4.
-TEST(SweepIntegration, AutoReclipsFollowTheSpacingWhereItIsCoarserThanAPixel) {
+// Automatic re-clips are spaced like positions: at sweep_spacing s surfaces move s px relative to each
+// other between re-clips, and the path tolerances (0.1 px at s = 1) are 0.1 s. Relative motion |v - w| =
+// |(15.5, 2.4)| = 15.7 px gives ceil(15.7 / s) re-clips: 63, 16, 8, 4 at s = 0.25, 1, 2, 4. A roll of 1 rad
+// strays 0.339 px (AutoReclipsFollowRollButNotStretch): ceil(3.39 / s) = 14, 4, 2, 1.
+TEST(SweepIntegration, AutoReclipsFollowTheSpacing) {
     const glm::dvec2 v(11.4, 3.7), w(-4.1, 1.3);
     RenderJob passing = twoMovingQuads(movingQuad(1.0, 1.0, 31.0, 31.0, 10.0, w), movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v));
     passing.render.time_integration = TimeIntegration::Sweep;
     RenderJob roll = rollingCameraJob();
-    for (const auto& [spacing, relative, rolled] : {std::tuple{0.25, 16, 4}, {1.0, 16, 4}, {2.0, 8, 2}, {4.0, 4, 1}}) {
+    for (const auto& [spacing, relative, rolled] : {std::tuple{0.25, 63, 14}, {1.0, 16, 4}, {2.0, 8, 2}, {4.0, 4, 1}}) {
         passing.render.sweep_spacing = roll.render.sweep_spacing = spacing;
         EXPECT_EQ(renderFrame(passing, 0).stats.clipped().subframes_max_per_tile, relative) << spacing;
         EXPECT_EQ(renderFrame(roll, 0).stats.clipped().subframes_max_per_tile, rolled) << spacing;
@@ -349,7 +351,8 @@ TEST(SweepIntegration, AutoReclipsFollowTheSpacingWhereItIsCoarserThanAPixel) {
 // relative motion at all. Their swept boxes meet, and the relative motion there, |v - w| = 44 px, sets
 // the count (eq. 24). Against point subframes at 96 times: one re-clip, at t = 1/2, finds the far quad
 // wholly behind the near one and drops it, though a pixel on its path sees it for 6 / 22 = 0.27 of the
-// shutter; auto (positions 0.05 px apart) does no worse than point subframes at its own count.
+// shutter; auto's count (at sweep_spacing 1), swept with positions 0.05 px apart, does no worse than
+// point subframes at that count.
 TEST(SweepIntegration, ObjectsPassingInMidShutterReclipForTheirRelativeMotion) {
     const glm::dvec2 v(22.0, 0.0), w(-22.0, 0.0);
     RenderJob job = twoMovingQuads(movingQuad(24.0, 12.0, 30.0, 20.0, 10.0, w), movingQuad(2.0, 10.0, 8.0, 22.0, 6.0, v));
@@ -358,12 +361,12 @@ TEST(SweepIntegration, ObjectsPassingInMidShutterReclipForTheirRelativeMotion) {
     const double once = maxDifference(renderFrame(sweepJob(job, v, 1, 96), 0), reference);
     job.render.subframes = 0;
     job.render.time_integration = TimeIntegration::Sweep;
+    const int count = static_cast<int>(renderFrame(job, 0).stats.clipped().subframes_max_per_tile);
+    EXPECT_GE(count, 44);
+    job.render.subframes = count;
     job.render.sweep_spacing = 0.05;
     const RenderResult automatic = renderFrame(job, 0);
-    const int count = static_cast<int>(automatic.stats.clipped().subframes_max_per_tile);
-    EXPECT_GE(count, 44);
     job.render.time_integration = TimeIntegration::Subframes;
-    job.render.subframes = count;
     const double point = rmsDifference(renderFrame(job, 0), reference);
     const double sweep = rmsDifference(automatic, reference);
     EXPECT_GT(once, 0.25);
