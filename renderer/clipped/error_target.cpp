@@ -201,6 +201,10 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
         reached = errorOf(final_job, result);
     }
     keep_pilot = keep_pilot || (plateau && measured(final_job) && reached > target * 4.0 / 3.0);
+    // A render judged against the pilot still twice the target when the corrections stop, where the
+    // pilot's own estimate meets it: the model misled (the estimate sees time sampling alone, and a pilot
+    // refined until it had one may owe it to re-clips capped at max_subframes). The pilot is the answer.
+    keep_pilot = keep_pilot || (measured(final_job) && reached > 2.0 * target && pilot.estimate > 0.0 && pilot.estimate <= target);
     if (keep_pilot) {
         final_job = tuning.at(pilot.interval);
         result = std::move(pilot.render);
