@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include <glm/vec2.hpp>
+
 #include "renderer/clipped/clipped_renderer.h"
 #include "renderer/stopwatch.h"
 
@@ -64,6 +66,7 @@ struct Pilot {
     RenderResult render;  // what renders well coarser are judged against
     double interval = 0.0, estimate = 0.0;
     double anchor_interval = 0.0, anchor_error = 0.0;
+    double coarser_order = 0.0;  // > 0: measured between the anchor and a coarser probe (anchorOnRefinement)
     int renders = 0;
     std::optional<RenderResult> answer;  // a probe that is already the result
 };
@@ -89,21 +92,52 @@ bool probeCoarser(const Tuning& tuning, int frame, const RenderCallbacks& quiet,
                kMeasuredRatio * pilot.interval;
 }
 
-// The pilot at kPilotSpacing (or kPilotSubframes); where it has no estimate, a sweep pilot is first
-// probed coarser, then (as point subframes are) refined 4x, at most twice, until it has one.
+// A sweep pilot refined 4x that still has no estimate (re-clips follow the spacing, so they leave about
+// as many positions per interval at every spacing): the refined render becomes the pilot, the finer
+// solution, and the model is anchored at the coarser one by their difference, E(h) - E(h/4) = (3/4) E(h)
+// at order 1, the re-clips' (error_target.h). With the coarser probe's error (`probe`, interval and
+// error) the order between the two is measured and serves targets between them. Where refining changed
+// no pixel (or did the same work), no finer setting will: the coarser render is the answer.
+void anchorOnRefinement(RenderResult& coarser, double coarser_interval, const glm::dvec2& probe, Pilot& pilot) {
+    const double difference = rmsDifference(pilot.render.image, coarser.image);
+    pilot.anchor_interval = coarser_interval;
+    if (!(difference > 0.0) || sameWork(pilot.render.stats.clipped(), coarser.stats.clipped())) {
+        pilot.anchor_error = 0.0;
+        pilot.answer = std::move(coarser);
+        return;
+    }
+    pilot.anchor_error = difference / 0.75;
+    if (probe.y > pilot.anchor_error && probe.x > coarser_interval)
+        pilot.coarser_order = std::clamp(std::log(probe.y / pilot.anchor_error) / std::log(probe.x / coarser_interval), 1.0, 3.0);
+}
+
+// The pilot at kPilotSpacing (or kPilotSubframes). Where it has no estimate, a sweep pilot is probed
+// coarser, then refined 4x once: it has an estimate there, or is anchored on the refinement
+// (anchorOnRefinement). Point subframes are refined 4x, at most twice, until they have one.
 Pilot runPilot(const Tuning& tuning, int frame, const RenderCallbacks& quiet) {
     Pilot pilot;
     double spacing = kPilotSpacing;
     int subframes = std::min(kPilotSubframes, tuning.job.render.max_subframes);
+    std::optional<RenderResult> coarser;
+    glm::dvec2 probe(0.0);  // the coarser probe's interval and difference from the pilot
     for (int attempt = 0; attempt < 3; ++attempt) {
+        if (attempt > 0) coarser = std::move(pilot.render);
         pilot.render = renderClipped(pilotJob(tuning.job, spacing, subframes), frame, quiet);
         ++pilot.renders;
+        const double coarser_interval = pilot.interval;
         pilot.interval = tuning.sweep ? spacing : 1.0 / subframes;
         pilot.estimate = pilot.render.stats.clipped().estimated_error;
         pilot.anchor_interval = pilot.interval;
         pilot.anchor_error = pilot.estimate;
         if (pilot.estimate > 0.0 || attempt == 2) break;
-        if (tuning.sweep && attempt == 0 && probeCoarser(tuning, frame, quiet, pilot)) break;
+        if (tuning.sweep && attempt == 0) {
+            if (probeCoarser(tuning, frame, quiet, pilot)) break;
+            probe = {pilot.anchor_interval, pilot.anchor_error};
+        }
+        if (tuning.sweep && attempt == 1) {
+            anchorOnRefinement(*coarser, coarser_interval, probe, pilot);
+            break;
+        }
         spacing = std::max(kMinSpacing, spacing / 4.0);
         subframes = std::min(tuning.job.render.max_subframes, subframes * 4);
     }
@@ -153,7 +187,8 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     const auto errorOf = [&](const RenderJob& j, const RenderResult& r) {
         return measured(j) ? rmsDifference(pilot.render.image, r.image) : r.stats.clipped().estimated_error;
     };
-    RenderJob final_job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target, tuning.coarserOrder()));
+    RenderJob final_job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target,
+                                                     pilot.coarser_order > 0.0 ? pilot.coarser_order : tuning.coarserOrder()));
     int renders = pilot.renders;
     RenderResult result;
     double reached = pilot.anchor_error;

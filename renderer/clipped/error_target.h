@@ -14,8 +14,12 @@ namespace clipblur {
 // chords' distance from the paths, the square of the spacing either way, so p = 2 coarser too. Where a sweep pilot estimates 0 (fewer than 3 positions in every
 // interval), a render 4x coarser is measured against it: where both did the same work that render is the
 // answer, else their difference anchors the model at its interval. Where that cannot serve (a target finer
-// than the pilot can judge, or point subframes), the pilot is refined 4x, at most twice, until it has an
-// estimate, and its setting is kept if it never does. Where the render's own estimate then misses the
+// than the pilot can judge, or point subframes), the pilot is refined 4x: point subframes at most twice,
+// until they have an estimate (their setting kept if they never do); a sweep pilot once, and where it still
+// has none (sweep re-clips follow the spacing, so every spacing leaves about as few positions per interval)
+// the refined render becomes the pilot and the model is anchored at the coarser one, E = 4/3 of their
+// difference, with the order to the coarser probe measured (the coarser render is the answer where the
+// refinement changed no pixel). Where the render's own estimate then misses the
 // target by more than 4/3, the order measured between pilot and render corrects it once (one more
 // render). A render at an interval at least 1.5x the pilot's is judged instead by its RMS difference from
 // the pilot image (the pilot is the finer solution) and corrected up to twice. Every render that chooses is

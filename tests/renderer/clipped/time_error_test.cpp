@@ -321,6 +321,58 @@ TEST(ErrorTarget, PilotIsKeptWhereCorrectionsStopFarOverTheTarget) {
     EXPECT_LE(rmsDifference(reference.image, r.image), kTarget);
 }
 
+// Two quads passing each other, 44 px apart in speed along x (and 0.4 px along y), and their reference,
+// 2048 point subframes. With sweep integration their re-clips follow the spacing, so every spacing leaves
+// about one sweep position per interval: no render has an estimate of its own.
+struct PassingQuads {
+    RenderJob job;
+    RenderResult reference;
+};
+PassingQuads passingQuads(double vy_far, double vy_near) {
+    RenderJob job = squareFilmJob();
+    job.render.method = Method::Clipped;
+    job.render.max_subframes = 2048;
+    job.scene.objects.push_back(movingQuad(24.0, 12.0, 30.0, 20.0, 10.0, glm::dvec2(-22.0, vy_far)));
+    job.scene.objects.push_back(movingQuad(2.0, 10.0, 8.0, 22.0, 6.0, glm::dvec2(22.0, vy_near)));
+    job.render.subframes = 2048;
+    RenderResult reference = renderFrame(job, 0);
+    job.render.subframes = 0;
+    job.render.time_integration = TimeIntegration::Sweep;
+    return {job, std::move(reference)};
+}
+
+// A pilot without an estimate, refined 4x without one, is anchored on the refinement: E(1) = 4/3 of
+// their difference, and the order up to the coarser probe (4 px) measured (errors here: 1.4e-2, 1.3e-4
+// and 8.2e-6 at 4, 1 and 0.25 px, order 3.4 then 2). Refined twice instead, the pilot of 0.0625 px cost
+// 4x the renders' re-clips; taken at order 1 from the anchor, the render landed 7x over a 1e-3 target.
+TEST(ErrorTarget, PilotWithoutAnEstimateIsAnchoredOnItsRefinement) {
+    constexpr double kTarget = 1e-3;
+    PassingQuads scene = passingQuads(0.7, 0.3);
+    ASSERT_EQ(renderFrame(scene.job, 0).stats.clipped().estimated_error, 0.0);
+    scene.job.render.error_target = kTarget;
+    const RenderResult r = renderFrame(scene.job, 0);
+    const ErrorTargetStats& stats = *r.stats.clipped().target;
+    EXPECT_LE(stats.renders, 4);  // pilot, coarser probe, refinement, the render
+    const double error = rmsDifference(scene.reference.image, r.image);
+    EXPECT_GT(error, 0.5 * kTarget);
+    EXPECT_LT(error, 1.5 * kTarget);
+}
+
+// Quads passing along x alone, 22 px each: at 1 px and at 0.25 px the render matches 2048 point
+// subframes to float rounding, so the refinement changes no pixel. Then no finer setting will: the pilot
+// at 1 px is the answer, after three renders (pilot, coarser probe, refinement).
+TEST(ErrorTarget, RefinementThatChangesNothingLeavesThePilot) {
+    PassingQuads scene = passingQuads(0.0, 0.0);
+    const RenderResult plain = renderFrame(scene.job, 0);
+    scene.job.render.error_target = 1e-4;
+    const RenderResult r = renderFrame(scene.job, 0);
+    const ErrorTargetStats& stats = *r.stats.clipped().target;
+    EXPECT_EQ(stats.renders, 3);
+    EXPECT_EQ(stats.sweep_spacing, 1.0);
+    for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
+    EXPECT_LT(rmsDifference(scene.reference.image, r.image), 1e-6);
+}
+
 // Shards of one frame choose one setting: every render that chooses is of the whole film. A window over
 // the quad and one beside it (nothing there, so its own error would be 0) must both get the whole film's
 // spacing, and their pixels the whole film's bits. The target is one the quad's first render misses, so
