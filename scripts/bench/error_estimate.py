@@ -11,7 +11,8 @@ small size, and per setting:
 the render's estimated_error beside two measured errors (RMS over R, G, B, oiiotool --diff):
 
   e_time   against the same re-clips with the time sampling the estimate covers made --refine times
-           finer (sweep: spacing S / refine, the same auto re-clips; subframes: N x refine subframes).
+           finer (sweep: spacing S / refine, the render's re-clip count fixed, as auto re-clips follow
+           the spacing; subframes: N x refine subframes).
            This is what the estimate claims to estimate;
   e_total  (sweep only, --total) against a clipped render fine in everything: sweep with --refine x
            the auto re-clips (render.subframes) and spacing S / refine. The difference to e_time is what
@@ -78,15 +79,20 @@ def run_scene(clipblur, name, config, args, folder):
         o = {"render.time_integration": "sweep", "render.sweep_spacing": spacing}
         image, stats = render(f"sweep_{spacing:g}", o)
         reclips = stats["counts"].get("subframes_max_per_tile", 0)
-        # Positions are capped at max_subframes: the reference lifts the cap (re-clips stay auto).
-        fine, fine_stats = render(f"sweep_{spacing:g}_fine", dict(o, **{"render.sweep_spacing": spacing / args.refine,
-                                                                        "render.max_subframes": 4096}))
+        # Positions are capped at max_subframes: the reference lifts the cap. Auto re-clips follow the
+        # spacing, so the reference fixes the render's count (the same intervals where there is one shutter
+        # segment; a fixed count is shared out over several, which same_reclips then shows).
+        fine_o = {"render.sweep_spacing": spacing / args.refine, "render.max_subframes": 4096}
+        if reclips > 0:
+            fine_o["render.subframes"] = reclips
+        fine, fine_stats = render(f"sweep_{spacing:g}_fine", dict(o, **fine_o))
         row = {"scene": name, "setting": f"sweep {spacing:g} px", "reclips": reclips,
                "positions": stats["counts"].get("sweep_positions", 0),
                "seconds": stats["seconds"]["total"],
                "estimated": stats["values"]["estimated_error"],
                "e_time": benchlib.image_error(fine, image)["rmse"],
-               "same_reclips": fine_stats["counts"].get("subframes_total") == stats["counts"].get("subframes_total")}
+               # per moving tile (a fixed count re-clips still tiles too, so totals differ)
+               "same_reclips": fine_stats["counts"].get("subframes_max_per_tile") == reclips}
         if args.total and reclips > 0:
             total, _ = render(f"sweep_{spacing:g}_total",
                               dict(o, **{"render.sweep_spacing": spacing / args.refine,
