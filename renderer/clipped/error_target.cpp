@@ -4,8 +4,6 @@
 #include <cmath>
 #include <optional>
 
-#include <glm/vec2.hpp>
-
 #include "renderer/clipped/clipped_renderer.h"
 #include "renderer/stopwatch.h"
 
@@ -60,6 +58,11 @@ struct Tuning {
     }
 };
 
+// An error known at an interval (pixels of sweep spacing, or 1 / subframes).
+struct ErrorAt {
+    double interval = 0.0, error = 0.0;
+};
+
 // The pilot and where the error model is anchored: an error known at an interval (the pilot's own
 // estimate, or a coarser probe's measured difference from the pilot).
 struct Pilot {
@@ -95,10 +98,10 @@ bool probeCoarser(const Tuning& tuning, int frame, const RenderCallbacks& quiet,
 // A sweep pilot refined 4x that still has no estimate (re-clips follow the spacing, so they leave about
 // as many positions per interval at every spacing): the refined render becomes the pilot, the finer
 // solution, and the model is anchored at the coarser one by their difference, E(h) - E(h/4) = (3/4) E(h)
-// at order 1, the re-clips' (error_target.h). With the coarser probe's error (`probe`, interval and
-// error) the order between the two is measured and serves targets between them. Where refining changed
+// at order 1, the re-clips' (error_target.h). With the coarser probe's error the order between the two
+// is measured and serves targets between them. Where refining changed
 // no pixel (or did the same work), no finer setting will: the coarser render is the answer.
-void anchorOnRefinement(RenderResult& coarser, double coarser_interval, const glm::dvec2& probe, Pilot& pilot) {
+void anchorOnRefinement(RenderResult& coarser, double coarser_interval, const ErrorAt& probe, Pilot& pilot) {
     const double difference = rmsDifference(pilot.render.image, coarser.image);
     pilot.anchor_interval = coarser_interval;
     if (!(difference > 0.0) || sameWork(pilot.render.stats.clipped(), coarser.stats.clipped())) {
@@ -107,8 +110,9 @@ void anchorOnRefinement(RenderResult& coarser, double coarser_interval, const gl
         return;
     }
     pilot.anchor_error = difference / 0.75;
-    if (probe.y > pilot.anchor_error && probe.x > coarser_interval)
-        pilot.coarser_order = std::clamp(std::log(probe.y / pilot.anchor_error) / std::log(probe.x / coarser_interval), 1.0, 3.0);
+    if (probe.error > pilot.anchor_error && probe.interval > coarser_interval)
+        pilot.coarser_order =
+            std::clamp(std::log(probe.error / pilot.anchor_error) / std::log(probe.interval / coarser_interval), 1.0, 3.0);
 }
 
 // The pilot at kPilotSpacing (or kPilotSubframes). Where it has no estimate, a sweep pilot is probed
@@ -119,7 +123,7 @@ Pilot runPilot(const Tuning& tuning, int frame, const RenderCallbacks& quiet) {
     double spacing = kPilotSpacing;
     int subframes = std::min(kPilotSubframes, tuning.job.render.max_subframes);
     std::optional<RenderResult> coarser;
-    glm::dvec2 probe(0.0);  // the coarser probe's interval and difference from the pilot
+    ErrorAt probe;  // the coarser probe's difference from the pilot
     for (int attempt = 0; attempt < 3; ++attempt) {
         if (attempt > 0) coarser = std::move(pilot.render);
         pilot.render = renderClipped(pilotJob(tuning.job, spacing, subframes), frame, quiet);
@@ -132,7 +136,7 @@ Pilot runPilot(const Tuning& tuning, int frame, const RenderCallbacks& quiet) {
         if (pilot.estimate > 0.0 || attempt == 2) break;
         if (tuning.sweep && attempt == 0) {
             if (probeCoarser(tuning, frame, quiet, pilot)) break;
-            probe = {pilot.anchor_interval, pilot.anchor_error};
+            probe = {.interval = pilot.anchor_interval, .error = pilot.anchor_error};
         }
         if (tuning.sweep && attempt == 1) {
             anchorOnRefinement(*coarser, coarser_interval, probe, pilot);
