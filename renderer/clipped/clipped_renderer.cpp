@@ -153,14 +153,12 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
             const int tile = grid.indexOf(x, y);
             if (!layers.tiles.contains(tile)) continue;
             sums.addPixel(i, front);
-            if (!layers.plan.backdrop[static_cast<std::size_t>(tile)]) {
-                front.clearPixel(i);
-                continue;
+            if (layers.plan.backdrop[static_cast<std::size_t>(tile)]) {
+                const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
+                const std::size_t p = film.index(x, y);
+                sums.addStill(i, seen, backdrop, p);
+                if (seen > 0.0 && seen < weight) sums.levels[i] += behindFront(front.levels[i], backdrop, p);
             }
-            const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
-            const std::size_t p = film.index(x, y);
-            sums.addStill(i, seen, backdrop, p);
-            if (seen > 0.0 && seen < weight) sums.levels[i] += behindFront(front.levels[i], backdrop, p);
             front.clearPixel(i);
         }
     });
