@@ -59,6 +59,11 @@ void emitPolygon(const ConvexPolygon& polygon, const ScreenTriangle& screen, con
         out.push_back({source.object, source.triangle, {bary[0], bary[static_cast<std::size_t>(k)], bary[static_cast<std::size_t>(k + 1)]}});
 }
 
+// Where a frame triangle index stands in a tile's candidates (sorted, and holding it).
+std::size_t localIndex(const std::vector<std::uint32_t>& candidates, std::uint32_t screen) {
+    return static_cast<std::size_t>(std::lower_bound(candidates.begin(), candidates.end(), screen) - candidates.begin());
+}
+
 // Whether the pixel's only fragment is the whole pixel square of one source: its four corners exactly.
 bool wholePixel(std::span<const Fragment> fragments, int x, int y) {
     if (fragments.size() != 1 || fragments[0].source_count != 1 || fragments[0].vertex_count != 4) return false;
@@ -91,8 +96,7 @@ void emitWholeRectangles(const FragmentTile& fragments, const std::vector<std::u
         const auto pixel = fragments.pixel(x, y);
         if (!wholePixel(pixel, x, y)) return false;
         screen = pixel[0].sources[0].source;
-        const auto c = std::lower_bound(candidates.begin(), candidates.end(), screen) - candidates.begin();
-        return merged[static_cast<std::size_t>(c)] == 0;
+        return merged[localIndex(candidates, screen)] == 0;
     };
     done.assign(tile.area(), 0);
     for (int y = tile.y0; y < tile.y1; ++y) {
@@ -190,11 +194,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
         // inside the tile is kept as that one polygon instead of one piece per pixel: same surface points,
         // far fewer triangles to propagate and re-clip (a large floor triangle becomes one, not hundreds).
         std::vector<double> visible(candidates.size(), 0.0);
-        const auto localIndex = [&](std::uint32_t screen_index) {
-            return static_cast<std::size_t>(std::lower_bound(candidates.begin(), candidates.end(), screen_index) -
-                                            candidates.begin());
-        };
-        for (const Fragment& fragment : fragments.fragments) visible[localIndex(fragment.sources[0].source)] += fragment.area;
+        for (const Fragment& fragment : fragments.fragments) visible[localIndex(candidates, fragment.sources[0].source)] += fragment.area;
         std::vector<char> merged(candidates.size(), 0);
         for (std::size_t c = 0; c < candidates.size(); ++c) {
             if (visible[c] <= 0.0) continue;
@@ -226,7 +226,7 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
                     ConvexPolygon polygon;
                     for (int k = 0; k < fragment.vertex_count; ++k) polygon.push(fragment.vertices[k]);
                     polygon.close();
-                    if (!merged[localIndex(screen_index)] && !whole[tile.index(x, y)])
+                    if (!merged[localIndex(candidates, screen_index)] && !whole[tile.index(x, y)])
                         emitPolygon(polygon, screen, source, out.triangles);
                     if (!still || x < 0 || y < 0 || x >= width || y >= height) continue;  // guard band
                     pieces.clear();
