@@ -219,12 +219,12 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     // another render could only repeat it.
     for (int k = 0; k < (measured(final_job) ? 2 : 1) && !pilot.answer; ++k) {
         const double interval = tuning.intervalOf(final_job);
-        if (k > 0 && sameWork(previous, result.stats.clipped())) {
-            plateau = true;
+        if (sameWork(previous, result.stats.clipped())) {
+            plateau = k > 0;  // the first render repeating the pilot's work is no plateau of corrections
             break;
         }
         if (!(reached > 0.0 && pilot.anchor_error > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
-            std::abs(std::log(interval / pilot.anchor_interval)) <= 1e-6 || sameWork(previous, result.stats.clipped()))
+            std::abs(std::log(interval / pilot.anchor_interval)) <= 1e-6)
             break;
         const double order = std::clamp(std::log(reached / pilot.anchor_error) / std::log(interval / pilot.anchor_interval), 1.0, 3.0);
         const RenderJob corrected = tuning.at(interval * std::pow(target / reached, 1.0 / order));
