@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "renderer/parallel_time.h"
+#include "renderer/propagation/group_parallax.h"
 #include "renderer/thread_scratch.h"
 #include "scene/error.h"
 #include "scene/object_motion.h"
@@ -61,15 +62,15 @@ double farthestApart(const RasterBounds& a, const RasterBounds& b) {
     return glm::length(glm::max(a.hi - b.lo, b.hi - a.lo));
 }
 
-// How far surfaces that move differently in the world move relative to each other where they can meet in
-// `tile` (eq. 24's pixel rule, for what one hides of another): for every two fragment triangles of
-// different motion groups (`group`) whose swept boxes overlap within the tile, the largest difference of
-// their open-to-close displacements at the overlap's corners. Each is taken at the point of its source
-// triangle nearest to the corner (FragmentMotion::displacementNear): on the triangle the map is affine and
-// within its corners' exact displacements, beyond it an extrapolation, which reached 6000 px at a sphere's
-// silhouette (configs/default.yaml at 64x36: every tile capped at 256 re-clips).
-// Surfaces that cross in mid-segment count though they are apart at both ends. The pairs come from a
-// sweep along x over the boxes sorted by their left edge; a tile with one group has none.
+// How far surfaces move relative to each other where they can meet in `tile` (eq. 24's pixel rule, for
+// what one hides of another): for every two fragment triangles whose swept boxes overlap within the
+// tile, at the overlap's corners. Of different motion groups (`group`): the largest difference of their
+// open-to-close displacements, each taken at the point of its source triangle nearest to the corner
+// (FragmentMotion::displacementNear): on the triangle the map is affine and within its corners' exact
+// displacements, beyond it an extrapolation, which reached 6000 px at a sphere's silhouette
+// (configs/default.yaml at 64x36: every tile capped at 256 re-clips). Surfaces that cross in mid-segment
+// count though they are apart at both ends. The pairs come from a sweep along x over the boxes sorted by
+// their left edge; a tile with one group has none (slidingWithin measures what moves inside a group).
 template <class GroupOf>
 double relativeMotion(std::span<const FragmentRef> refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
                       const RasterBounds& tile, GroupOf group) {
@@ -112,6 +113,53 @@ double relativeMotion(std::span<const FragmentRef> refs, const std::array<std::v
         active.push_back(&item);
     }
     return relative;
+}
+
+// How far surfaces of one motion group slide over each other in `tile` when the eye moves relative to
+// the group (GroupParallax). Only surfaces one behind the other can change what one hides of the other:
+// at each of kSlideSamples x kSlideSamples points spread over the tile, the nearest and farthest of the
+// group's source triangles over the point at open (every fragment triangle's, so what either end set saw
+// near there), and their parallax. Points along one ray part monotonically as their inverse depths do,
+// so no two surfaces there part further. One plane (a floor cut into triangles) has one depth at a
+// point, and a convex object's faces seen at an end do not overlap: neither slides.
+constexpr int kSlideSamples = 5;
+
+template <class GroupOf>
+double slidingWithin(std::span<const FragmentRef> refs, const std::array<std::vector<FragmentMotion>, 2>& motion,
+                     const RasterBounds& tile, GroupOf group, const GroupParallax& parallax) {
+    constexpr int kPoints = kSlideSamples * kSlideSamples;
+    struct Depths {
+        std::uint32_t group;
+        std::array<double, kPoints> nearest, farthest;
+    };
+    std::vector<Depths>& groups = threadScratch<std::vector<Depths>>();
+    groups.clear();
+    const glm::dvec2 step = (tile.hi - tile.lo) / double(kSlideSamples - 1);
+    const auto point = [&](int k) { return tile.lo + step * glm::dvec2(k % kSlideSamples, k / kSlideSamples); };
+    for (const FragmentRef& ref : refs) {
+        const FragmentMotion& fm = motion[ref.layer()][ref.index()];
+        const std::uint32_t g = group(ref);
+        if (fm.crosses_near || !fm.has_source || !parallax.slides(g)) continue;
+        auto depths = std::find_if(groups.begin(), groups.end(), [&](const Depths& d) { return d.group == g; });
+        for (int k = 0; k < kPoints; ++k) {
+            const std::optional<double> w = fm.inverseDepthAt(point(k));
+            if (!w) continue;
+            if (depths == groups.end()) {
+                depths = groups.insert(groups.end(), Depths{g, {}, {}});
+                depths->nearest.fill(0.0);
+                depths->farthest.fill(std::numeric_limits<double>::infinity());
+            }
+            depths->nearest[static_cast<std::size_t>(k)] = std::max(depths->nearest[static_cast<std::size_t>(k)], *w);
+            depths->farthest[static_cast<std::size_t>(k)] = std::min(depths->farthest[static_cast<std::size_t>(k)], *w);
+        }
+    }
+    double sliding = 0.0;
+    for (const Depths& d : groups)
+        for (int k = 0; k < kPoints; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            if (d.nearest[i] > d.farthest[i]) sliding = std::max(sliding, parallax.between(d.group, point(k), d.nearest[i], d.farthest[i]));
+        }
+    return sliding;
 }
 
 // The pixels of `tile` a re-clip of `refs` resolves, for the cost of one (integrationCost): each fragment
@@ -237,6 +285,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
     // surface cut into many objects that move together has none, as one object has none with itself.
     plan.groups = frame.motion.groups(window);
     const auto motionGroup = [&](const FragmentRef& ref) { return plan.groups[object(ref)]; };
+    const GroupParallax parallax(frame.motion, frame.projection, window, plan.groups);
     if (sweep && !backdrop.empty() && !backdrop.behind_everything) plan.front.resize(static_cast<std::size_t>(count));
     parallelFor(0, count, [&](int index) {
         const auto t = static_cast<std::size_t>(index);
@@ -275,7 +324,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
             // hides of another: at most reclip_spacing pixels per re-clip, eq. 24 at that spacing), and
             // how far a path leaves the parabola a sweep follows (its distance from the parabola through
             // its positions at the segment's ends and middle: third order, falling as the cube of the count).
-            // Self-occlusion inside one object is left to curvature, deformation and shutter segments.
+            // Inside one group, what the eye's motion relative to it slides over what (parallax).
             constexpr double kChordTolerance = 0.1;  // px at reclip_spacing 1, scaled with it
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath); a surface that turns or shears under them (a roll) is followed to
@@ -289,7 +338,9 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
                 unstretched = std::max(unstretched, fm.unstretched_error);
             }
             const PixelBounds t = grid.tile(index);
-            const double relative = relativeMotion(refs, motion, RasterBounds{{t.x0, t.y0}, {t.x1, t.y1}}, motionGroup);
+            const RasterBounds box{{t.x0, t.y0}, {t.x1, t.y1}};
+            const double relative = std::max(relativeMotion(refs, motion, box, motionGroup),
+                                             slidingWithin(refs, motion, box, motionGroup, parallax));
             const double r = options.reclip_spacing, tolerance = kChordTolerance * r;
             p.count = subframeCount(std::max({relative / r, std::cbrt(deviation / tolerance), unstretched / tolerance}),
                                     max_subframes, &p.capped);

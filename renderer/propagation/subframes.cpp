@@ -1,5 +1,6 @@
 #include "renderer/propagation/subframes.h"
 
+#include "renderer/geometry/predicates.h"
 #include "renderer/geometry/swept_footprint.h"
 #include "renderer/thread_scratch.h"
 
@@ -275,6 +276,7 @@ double ShutterPathSampler::parabolaDeviation(const std::vector<glm::dvec3>& posi
 void ShutterPathSampler::sourceMap(const MeshPoint& point, FragmentMotion& out,
                                    const std::vector<std::array<CameraRelative, 3>>* corners) const {
     std::array<glm::dvec2, 3> open{}, close{};
+    std::array<double, 3> inv_depth{};
     for (int i = 0; i < 3; ++i) {
         MeshPoint corner = point;
         corner.b = glm::dvec3(0.0);
@@ -286,6 +288,7 @@ void ShutterPathSampler::sourceMap(const MeshPoint& point, FragmentMotion& out,
         const ProjectedPoint a = at(0), b = at(nodes_.size() - 1);
         if (a.behind || b.behind) return;
         open[static_cast<std::size_t>(i)] = a.raster;
+        inv_depth[static_cast<std::size_t>(i)] = a.inv_depth;
         close[static_cast<std::size_t>(i)] = b.raster;
     }
     // A face seen edge-on has no map across it; one nearly edge-on still has an exact one for motion
@@ -295,7 +298,19 @@ void ShutterPathSampler::sourceMap(const MeshPoint& point, FragmentMotion& out,
     if (!map) return;
     out.open_to_close = *map;
     out.source_open = open;
+    out.source_open_inv_depth = inv_depth;
     out.has_source = true;
+}
+
+std::optional<double> FragmentMotion::inverseDepthAt(const glm::dvec2& x) const {
+    const auto& [a, b, c] = source_open;
+    // Barycentric weights by sub-triangle areas; the triangle is not edge-on (openToClose accepted it).
+    const double area = differenceOfProducts(b.x - a.x, c.y - a.y, b.y - a.y, c.x - a.x);
+    const double wb = differenceOfProducts(x.x - a.x, c.y - a.y, x.y - a.y, c.x - a.x) / area;
+    const double wc = differenceOfProducts(b.x - a.x, x.y - a.y, b.y - a.y, x.x - a.x) / area;
+    const double wa = 1.0 - wb - wc;
+    if (wa < 0.0 || wb < 0.0 || wc < 0.0) return std::nullopt;
+    return wa * source_open_inv_depth[0] + wb * source_open_inv_depth[1] + wc * source_open_inv_depth[2];
 }
 
 int subframeCount(double pixels, int max_subframes, bool* capped) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -44,6 +45,8 @@ struct FragmentMotion {
     // the triangle its map is an extrapolation, and for a nearly edge-on face (a sphere's silhouette) one
     // of thousands of pixels: displacementNear stays on the triangle.
     std::array<glm::dvec2, 3> source_open{};
+    // Its inverse camera depths at those corners: inverse depth is affine over a plane's image.
+    std::array<double, 3> source_open_inv_depth{};
     bool has_source = false;
     // Range of the vertices' depth over the shutter, padded by (largest sampled depth rate) x (largest gap
     // between samples) as the swept box is. Depth is affine over a planar fragment, so every point of it
@@ -58,6 +61,8 @@ struct FragmentMotion {
     glm::dvec2 displacementNear(const glm::dvec2& x) const {
         return displacement(has_source ? closestPointInTriangle(source_open, x) : x);
     }
+    // The source triangle's inverse depth at raster x at open, when x is on it (has_source only).
+    std::optional<double> inverseDepthAt(const glm::dvec2& x) const;
 };
 
 // Samples the exact vertex paths over the shutter [t0, t1]. The shutter is cut at every camera,
