@@ -73,12 +73,32 @@ PixelBounds TileSet::bounds(const TileGrid& grid) const {
     return box;
 }
 
+TileSet TileSet::grown(const TileGrid& grid, int margin, const TileGrid& to) const {
+    if (every_) return *this;
+    TileSet out(false);
+    for (int i = 0; i < grid.count(); ++i) {
+        if (!contains(i)) continue;
+        const PixelBounds t = grid.tile(i);
+        out.addOverlapping(to, PixelBounds::corners(t.x0 - margin, t.y0 - margin, t.x1 + margin, t.y1 + margin));
+    }
+    return out;
+}
+
 TileSet TileSet::intersect(const TileSet& other) const {
     if (every_) return other;
     if (other.every_) return *this;
     TileSet out(false);
     out.in_.resize(std::min(in_.size(), other.in_.size()), 0);
     for (std::size_t i = 0; i < out.in_.size(); ++i) out.in_[i] = in_[i] & other.in_[i];
+    return out;
+}
+
+TileSet TileSet::unite(const TileSet& other) const {
+    if (every_ || other.every_) return TileSet();
+    TileSet out(false);
+    out.in_.resize(std::max(in_.size(), other.in_.size()), 0);
+    for (std::size_t i = 0; i < out.in_.size(); ++i)
+        out.in_[i] = (i < in_.size() && in_[i]) || (i < other.in_.size() && other.in_[i]) ? 1 : 0;
     return out;
 }
 

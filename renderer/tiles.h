@@ -57,7 +57,10 @@ public:
     bool overlaps(const TileGrid& grid, const PixelBounds& box) const;
     // The smallest rectangle holding every member tile of `grid`; empty when there is none.
     PixelBounds bounds(const TileGrid& grid) const;
+    // The tiles of `to` that overlap a member tile of `grid` grown by `margin` pixels on each side.
+    TileSet grown(const TileGrid& grid, int margin, const TileGrid& to) const;
     TileSet intersect(const TileSet& other) const;
+    TileSet unite(const TileSet& other) const;
     TileSet minus(const TileSet& other) const;
 
     friend bool operator==(const TileSet&, const TileSet&) = default;

@@ -197,6 +197,10 @@ struct SegmentSpec {
     double curve_begin = 1.0, curve_end = 1.0;  // the shutter curve at begin and end (ShutterSegment)
     int subframes = 0;  // > 0: this segment's fixed re-clip count
     const TileSet& tiles;  // the film tiles whose pixels it renders
+    // Film tiles where its sets keep every layer (ShutterSegment::deep); the next segment's, which a
+    // closing set it opens with keeps as well.
+    const TileSet& deep;
+    const TileSet& next_deep;
     int index = 0;
     std::span<const int> bands;  // every segment's guard band (guardBandPixels), in order
     bool next_adjacent = false;  // the next segment begins where this one ends, over the same tiles: it opens with our closing set
@@ -248,9 +252,14 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
     const TileGrid grid = fragmentGrid(ctx, seg.tiles, band);
-    const auto request = [&](double time) {
+    // Deep tiles hold what a surface hidden at both ends was seen over, within reach; its points at the
+    // ends are within `band` of there.
+    const TileSet open_deep = seg.deep.grown(ctx.frame.grid, band, grid);
+    const TileSet close_deep = carry ? seg.deep.unite(seg.next_deep).grown(ctx.frame.grid, band, grid) : open_deep;
+    const auto request = [&](double time, const TileSet& deep) {
         return FrameFragmentRequest{.time = time,
                                     .grid = &grid,
+                                    .deep = &deep,
                                     .rays_per_side = settings.visibility_rays,
                                     .keep_triangles = !ends.still_scene,
                                     .audit = settings.audit,
@@ -265,7 +274,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     } else {
         FrameFragmentStats open_stats;
         ends.still = stillImage(totals, film_pixels, track_objects);
-        ends.open = buildFrameFragments(ctx.frame, request(seg.window.t0), &ends.still, open_stats);
+        ends.open = buildFrameFragments(ctx.frame, request(seg.window.t0, open_deep), &ends.still, open_stats);
         totals.stats.open.merge(open_stats);
         ++totals.stats.frame_sets;
     }
@@ -273,7 +282,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
         FrameFragmentStats close_stats;
         PixelSums next_still;
         if (carry) next_still = stillImage(totals, film_pixels, track_objects);
-        ends.close = buildFrameFragments(ctx.frame, request(seg.window.t1), carry ? &next_still : nullptr, close_stats);
+        ends.close = buildFrameFragments(ctx.frame, request(seg.window.t1, close_deep), carry ? &next_still : nullptr, close_stats);
         totals.stats.close.merge(close_stats);
         ++totals.stats.frame_sets;
         if (carry) totals.carried.emplace(ends.close, std::move(next_still));
@@ -475,45 +484,27 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
 
 namespace {
 
-// Whether a segment over `tiles` that hides something in `where` is better split there only than over
-// all its tiles. Split there, it keeps fragment sets at both ends over its tiles and its halves get sets
-// at both ends and the middle over `where`'s reach: 2 + 3f sets of its size, f their size over its, where
-// a split of all its tiles builds 3 (one end's set serving both): the better when f < 1/3. Integration
-// is left out: under sweep the halves also integrate every tile whose reach meets `where`, for what it
-// spills there, so a rule that counted only `where`'s tiles re-clipped the particles 24 % more.
-bool splitsLocally(const ClippedContext& ctx, const TileSet& tiles, const TileSet& where, int band) {
-    const auto size = [&](const TileSet& t) { return fragmentGrid(ctx, t, band).count(); };
-    return 3 * size(where) < size(tiles);
-}
-
-// Shutter segments (one unless something turns far or is hidden at both ends of one), each rendered by
-// the paper's method and weighted by its length.
-std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, ClippedStats& stats,
-                                              std::vector<std::string>& warnings) {
+// Shutter segments (one unless something turns far), each rendered by the paper's method and weighted
+// by its length, with deep tiles where something is hidden at both its ends.
+std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, ClippedStats& stats) {
     const RenderSettings& settings = ctx.job.render;
     const auto stage = Clock::now();
     std::vector<ShutterSegment> segments = equalSegments(
         ctx.frame.motion.t0(), ctx.frame.motion.t1(),
         stats.both_frames ? shutterSegments(ctx.frame.motion, settings.segments, settings.max_segments) : 1);
+    if (stats.both_frames) segments = splitAtCurve(segments, ctx.curve);  // frame0_only: the opening image
     HiddenProbe probe;
-    int unsplit = 0;
     if (stats.both_frames && settings.segments == 0 && visibilityCanChange(ctx.frame.motion.shutter())) {
         const int cap = std::max(ctx.job.scene.film.width, ctx.job.scene.film.height) / 2;
-        const auto hidden = [&](const ShutterSegment& s) {
+        for (ShutterSegment& s : segments) {
             std::optional<int> band;  // the segment's guard band: a scan of the scene, so only where needed
             const auto reach = [&] {
                 if (!band) band = guardBandPixels(ctx.frame.motion, ctx.frame.projection, ctx.frame.motion.window(s.begin, s.end), cap);
                 return *band;
             };
-            const TileSet where = hiddenTiles(ctx.frame, s, reach, probe);
-            return where.empty() || splitsLocally(ctx, s.tiles, where, reach()) ? where : s.tiles;
-        };
-        segments = splitWhereHidden(segments, settings.max_segments, hidden, unsplit);
+            s.deep = hiddenTiles(ctx.frame, s, reach, probe);
+        }
     }
-    if (stats.both_frames) segments = splitAtCurve(segments, ctx.curve);  // frame0_only: the opening image
-    if (unsplit > 0)
-        warnings.push_back(std::to_string(unsplit) + " shutter segments still hide a surface at both ends at max_segments (" +
-                           std::to_string(settings.max_segments) + "); it may show as a hole");
     stats.segments = static_cast<long long>(segments.size());
     for (const ShutterSegment& s : segments) stats.segment_tiles += s.tiles.size(ctx.frame.grid);
     // The probe's Embree scenes but those the first segment's fragment sets need.
@@ -563,6 +554,8 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
                                .curve_end = segment.curve_end,
                                .subframes = fixed,
                                .tiles = segment.tiles,
+                               .deep = segment.deep,
+                               .next_deep = last ? segment.deep : segments[s + 1].deep,
                                .index = static_cast<int>(s),
                                .bands = bands,
                                .next_adjacent = !last && segments[s + 1].begin == segment.end &&
@@ -626,7 +619,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
     stats.backdrop_behind_everything = backdrop.behind_everything;
     stats.seconds.scene_build = secondsSince(start);
 
-    const std::vector<ShutterSegment> segments = shutterSegmentsOf(ctx, stats, result.stats.warnings);
+    const std::vector<ShutterSegment> segments = shutterSegmentsOf(ctx, stats);
     WindowSums sums(ctx.window.area(), job.output.cryptomatte.enabled);
     renderSegments(ctx, segments, sums, totals);
     stats.estimated_error = estimateTimeError(sums.levels);

@@ -141,6 +141,7 @@ void FrameFragmentStats::merge(const FrameFragmentStats& s) {
     merged_triangles += s.merged_triangles;
     triangles += s.triangles;
     near_clipped += s.near_clipped;
+    deep_tiles += s.deep_tiles;
     rejected_triangles += s.rejected_triangles;
     dropped_area += s.dropped_area;
     for (std::size_t b = 0; b < s.fragments_per_pixel.size(); ++b) fragments_per_pixel[b] += s.fragments_per_pixel[b];
@@ -175,8 +176,9 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
         const PixelBounds tile = grid.tile(index);
         TileOutput& out = outputs[static_cast<std::size_t>(index)];
         Scratch& scratch = scratches.local();
+        const bool deep = request.deep && request.deep->contains(index);
         std::vector<std::uint32_t> candidates =
-            findCandidates(frame, {setup.embree, setup.adjacency, request.rays_per_side}, index, scratch.candidates,
+            findCandidates(frame, {setup.embree, setup.adjacency, deep ? 0 : request.rays_per_side}, index, scratch.candidates,
                            out.stats.candidates);
         if (request.leave_out)
             std::erase_if(candidates, [&](std::uint32_t c) { return (*request.leave_out)[frame.source(c).object] != 0; });
@@ -195,17 +197,21 @@ std::vector<FragmentTriangle> buildFrameFragments(const FrameSetup& setup, const
         // far fewer triangles to propagate and re-clip (a large floor triangle becomes one, not hundreds).
         std::vector<double> visible(candidates.size(), 0.0);
         for (const Fragment& fragment : fragments.fragments) visible[localIndex(candidates, fragment.sources[0].source)] += fragment.area;
-        std::vector<char> merged(candidates.size(), 0);
+        // A deep tile keeps every candidate's part in it, seen or hidden, so each counts as merged.
+        std::vector<char> merged(candidates.size(), deep ? 1 : 0);
+        out.stats.deep_tiles += deep ? 1 : 0;
         for (std::size_t c = 0; c < candidates.size(); ++c) {
-            if (visible[c] <= 0.0) continue;
+            if (!deep && visible[c] <= 0.0) continue;
             const ScreenTriangle& screen = frame.triangles()[candidates[c]];
             const ConvexPolygon part = clipToTile(screen, tile);
-            const double full = std::abs(part.area());
-            // Relative slack for the rounding of summed pixel pieces; a real occlusion of 1e-9 of a
-            // triangle's area inside one tile is far below what any pixel can show.
-            if (part.degenerate() || visible[c] < full * (1.0 - 1e-9)) continue;
-            merged[c] = 1;
-            ++out.stats.merged_triangles;
+            if (part.degenerate()) continue;
+            if (!deep) {
+                // Relative slack for the rounding of summed pixel pieces; a real occlusion of 1e-9 of a
+                // triangle's area inside one tile is far below what any pixel can show.
+                if (visible[c] < std::abs(part.area()) * (1.0 - 1e-9)) continue;
+                merged[c] = 1;
+                ++out.stats.merged_triangles;
+            }
             emitPolygon(part, screen, frame.source(candidates[c]), out.triangles);
         }
 

@@ -31,6 +31,7 @@ struct FrameFragmentStats {
     long long merged_triangles = 0;    // candidates fully visible in a tile, kept whole rather than per pixel
     long long triangles = 0;           // fragment triangles kept for propagation
     long long near_clipped = 0;
+    long long deep_tiles = 0;          // tiles whose every layer was kept (FrameFragmentRequest::deep)
     long long rejected_triangles = 0;
     double dropped_area = 0.0;
     std::array<long long, 6> fragments_per_pixel{};  // pixels with 0, 1, 2, 3-4, 5-8, >8 fragments
@@ -46,6 +47,7 @@ struct FrameFragmentStats {
         f.count("merged_triangles", merged_triangles);
         f.count("fragment_triangles", triangles);
         f.count("near_clipped", near_clipped);
+        f.count("deep_tiles", deep_tiles);
         static const char* buckets[] = {"pixels_with_fragments_0",   "pixels_with_fragments_1",
                                         "pixels_with_fragments_2",   "pixels_with_fragments_3_4",
                                         "pixels_with_fragments_5_8", "pixels_with_fragments_over_8"};
@@ -58,6 +60,9 @@ struct FrameFragmentStats {
 struct FrameFragmentRequest {
     double time = 0.0;
     const TileGrid* grid = nullptr;  // the tiles to resolve (a film plus a guard band); null: the film's
+    // Of those, the tiles whose sets keep every layer: each triangle over the tile, clipped to it, hidden
+    // or not (near surfaces hidden at both ends of a segment but seen in between); null: none.
+    const TileSet* deep = nullptr;
     int rays_per_side = 2;       // Embree candidate rays per pixel side; 0: every binned triangle
     bool keep_triangles = true;  // return the fragment triangles (false: only the still image)
     bool audit = false;          // check every resolved tile's invariants (auditTile)

@@ -25,38 +25,11 @@ std::vector<ShutterSegment> equalSegments(double t0, double t1, int count) {
     return segments;
 }
 
-std::vector<ShutterSegment> splitWhereHidden(const std::vector<ShutterSegment>& segments, int max_segments,
-                                             const std::function<TileSet(const ShutterSegment&)>& hidden, int& unsplit) {
-    unsplit = 0;
-    int count = static_cast<int>(segments.size());
-    std::vector<ShutterSegment> out;
-    std::vector<ShutterSegment> pending(segments.rbegin(), segments.rend());  // the next one last
-    while (!pending.empty()) {
-        ShutterSegment s = pending.back();
-        pending.pop_back();
-        const TileSet where = hidden(s);
-        if (!where.empty()) {
-            if (count < max_segments) {
-                const double middle = 0.5 * (s.begin + s.end);
-                pending.push_back({middle, s.end, 0.5 * s.weight, 1.0, 1.0, where});
-                pending.push_back({s.begin, middle, 0.5 * s.weight, 1.0, 1.0, where});
-                ++count;
-                s.tiles = s.tiles.minus(where);
-                if (!s.tiles.empty()) out.push_back(s);
-                continue;
-            }
-            ++unsplit;
-        }
-        out.push_back(s);
-    }
-    return out;
-}
-
 std::vector<ShutterSegment> splitAtCurve(const std::vector<ShutterSegment>& segments, const ShutterCurve& curve) {
     if (curve.box()) return segments;
     std::vector<ShutterSegment> out;
     const auto piece = [&](double begin, double end, const TileSet& tiles) {
-        const ShutterSegment s{begin, end, curve.mass(begin, end), curve.weightAt(begin), curve.weightAt(end), tiles};
+        const ShutterSegment s{begin, end, curve.mass(begin, end), curve.weightAt(begin), curve.weightAt(end), tiles, {}};
         if (s.curve_begin > 0.0 || s.curve_end > 0.0) out.push_back(s);
     };
     for (const ShutterSegment& s : segments) {

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <functional>
 #include <vector>
 
 #include "renderer/frame_motion.h"
@@ -10,10 +9,10 @@
 namespace clipblur {
 
 // The paper builds fragment sets only at shutter open and close, so a surface hidden at both ends but
-// seen in between (the wall behind a propeller whose blades return to the same places, the side of the
-// world a camera turning 90 degrees sweeps past) is missing from both. Splitting the shutter into
-// segments, each with its own fragment sets at its ends, bounds how far anything turns between two
-// sets. `requested` > 0 is used as given; 0 (auto) gives one segment per kAutoSegmentTurnDegrees of the largest
+// seen in between (the side of the world a camera turning 90 degrees sweeps past) is missing from both.
+// Splitting the shutter into segments, each with its own fragment sets at its ends, bounds how far
+// anything turns between two sets; what is still hidden at both ends of a segment (the wall behind a
+// propeller whose blades return to the same places) is kept in its sets' deep tiles (ShutterSegment). `requested` > 0 is used as given; 0 (auto) gives one segment per kAutoSegmentTurnDegrees of the largest
 // turn, at most max_segments; a shutter with no rotation is one segment, the paper's method.
 inline constexpr double kAutoSegmentTurnDegrees = 15.0;
 int shutterSegments(const FrameMotion& motion, int requested, int max_segments);
@@ -21,24 +20,18 @@ int shutterSegments(const FrameMotion& motion, int requested, int max_segments);
 // One shutter segment and its share of the shutter.
 struct ShutterSegment {
     double begin = 0.0, end = 0.0;
-    double weight = 1.0;  // 1 / count for equal segments, halved exactly by each split
+    double weight = 1.0;  // its share of the shutter: 1 / count for equal segments
     // The shutter curve's (unnormalised) weight at begin and end, linear between: equal for a box.
     double curve_begin = 1.0, curve_end = 1.0;
-    // The film tiles whose pixels it renders: every tile, or where a split segment hid something (the
-    // rest of that segment's tiles keep it unsplit).
+    // The film tiles whose pixels it renders: every tile.
     TileSet tiles;
+    // Film tiles near surfaces hidden at both its ends but seen in between (hiddenTiles): there its
+    // fragment sets keep every layer, and the re-clips find what shows.
+    TileSet deep = TileSet::none();
 };
 
 // `count` equal segments of [t0, t1]; each boundary is computed once, so neighbours meet at the same double.
 std::vector<ShutterSegment> equalSegments(double t0, double t1, int count);
-
-// Auto segments past rotation: `hidden(segment)` gives the tiles of segment.tiles where something is
-// hidden at both its ends. Those tiles get the segment's two halves, each checked again over them,
-// earlier halves first; the segment keeps the rest of its tiles. Splitting stops where nothing is hidden
-// or after max_segments - segments.size() splits. A hole is local, so the halves cost what its tiles do,
-// not the film. `unsplit` counts the segments still hiding something at the cap.
-std::vector<ShutterSegment> splitWhereHidden(const std::vector<ShutterSegment>& segments, int max_segments,
-                                             const std::function<TileSet(const ShutterSegment&)>& hidden, int& unsplit);
 
 // A shutter curve that is not a box: each segment cut at the curve's breakpoints inside it, so the
 // curve is linear over every piece, with the piece's share of the curve's integral as its weight. Pieces

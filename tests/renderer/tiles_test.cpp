@@ -76,6 +76,10 @@ TEST(TileSet, AlgebraMatchesStdSet) {
         for (int i : sa) (sb.count(i) ? both : a_not_b).insert(i);
         for (int i : all)
             if (!sb.count(i)) every_not_b.insert(i);
+        std::set<int> either = sa;
+        either.insert(sb.begin(), sb.end());
+        EXPECT_EQ(members(a.unite(b), grid), either);
+        EXPECT_TRUE(a.unite(TileSet()).every());
         EXPECT_EQ(members(a.intersect(b), grid), both);
         EXPECT_EQ(members(a.minus(b), grid), a_not_b);
         EXPECT_EQ(members(TileSet().minus(b), grid), every_not_b);
@@ -87,6 +91,32 @@ TEST(TileSet, AlgebraMatchesStdSet) {
     EXPECT_EQ(TileSet().size(grid), grid.count());
     EXPECT_TRUE(TileSet().minus(TileSet::none()).every());
     EXPECT_TRUE(TileSet::none().empty());
+}
+
+// A set grown onto another grid (a film's tiles onto a larger, offset grid of the same tile size, as
+// deep tiles go from the film to a fragment set's grid): a tile of it is a member exactly when it shares
+// a pixel with some member tile grown by the margin, by testing every pair.
+TEST(TileSet, GrownMatchesTestingEveryPair) {
+    const TileGrid film(70, 40, 8), band(-13, -13, 96, 66, 8);
+    std::mt19937 rng(11);
+    std::bernoulli_distribution coin(0.1);
+    for (int trial = 0; trial < 30; ++trial) {
+        TileSet a = TileSet::none();
+        for (int i = 0; i < film.count(); ++i)
+            if (coin(rng)) a.addOverlapping(film, film.tile(i));
+        const int margin = trial % 7 * 3;
+        std::set<int> expected;
+        for (int j = 0; j < band.count(); ++j)
+            for (int i = 0; i < film.count(); ++i) {
+                const PixelBounds t = film.tile(i);
+                if (a.contains(i) &&
+                    band.tile(j).overlaps(PixelBounds::corners(t.x0 - margin, t.y0 - margin, t.x1 + margin, t.y1 + margin)))
+                    expected.insert(j);
+            }
+        EXPECT_EQ(members(a.grown(film, margin, band), band), expected) << trial;
+    }
+    EXPECT_TRUE(TileSet().grown(film, 4, band).every());
+    EXPECT_TRUE(TileSet::none().grown(film, 4, band).empty());
 }
 
 }  // namespace clipblur

@@ -167,18 +167,20 @@ TEST(HiddenProbe, VisibilityChangesOnlyWhenTheEyeOrAnObjectMoves) {
 // column x shows the black background for as long as neither quad covers it, (23 - 2x) / 16 of the
 // shutter at the pixel's centre for x in 4..11 (A leaves x at (x - 4) / 16, B arrives at (20 - x) / 16;
 // linear in x, so the pixel's mean) and mirrored over [20, 28). Over 16 rows and both regions the mean
-// squared error is 2 x 16 x (1 + 9 + ... + 225) / 256 / 1024 = 0.0830, RMSE 0.288. Auto segments split
-// once (the probe test above) and draw the wall.
-TEST(HiddenProbe, AutoSegmentsDrawTheWallBothEndsHide) {
+// squared error is 2 x 16 x (1 + 9 + ... + 225) / 256 / 1024 = 0.0830, RMSE 0.288. Auto keeps the one
+// segment and every layer of the tiles near the hole (the probe test above), and draws the wall.
+TEST(HiddenProbe, DeepTilesDrawTheWallBothEndsHide) {
     RenderJob job = crossingJob();
     job.render.segments = 1;
     const RenderResult one = renderFrame(job, 0);
     job.render.segments = 0;
     const RenderResult automatic = renderFrame(job, 0);
-    job.render.segments = 2;
-    const RenderResult two = renderFrame(job, 0);
-    EXPECT_EQ(automatic.stats.clipped().segments, 2);
-    EXPECT_EQ(automatic.stats.clipped().hidden_probe_hits, threeProbeHits(job.scene, 0.0, 1.0));  // halves: none
+    const ClippedStats& stats = automatic.stats.clipped();
+    EXPECT_EQ(stats.segments, 1);
+    EXPECT_EQ(stats.hidden_probe_hits, threeProbeHits(job.scene, 0.0, 1.0));
+    EXPECT_GT(stats.open.deep_tiles, 0);
+    EXPECT_EQ(stats.open.deep_tiles, stats.close.deep_tiles);
+    EXPECT_EQ(one.stats.clipped().open.deep_tiles, 0);  // a fixed count probes nothing
     const auto error = [](const RenderResult& r) {
         double squared = 0.0, worst = 0.0;
         for (const char* name : {"R", "G", "B"}) {
@@ -196,48 +198,37 @@ TEST(HiddenProbe, AutoSegmentsDrawTheWallBothEndsHide) {
     EXPECT_GT(worst_one, 0.85);  // 15/16 at columns 4 and 27
     // Each covered pixel's areas sum to one up to float rounding of the coverage sums.
     EXPECT_LT(error(automatic).second, 1e-5);
-    EXPECT_EQ(automatic.image.find("R")->values, two.image.find("R")->values);  // the same two segments
+    // max_segments no longer matters: no segment is left hiding the wall.
+    job.render.max_segments = 1;
+    const RenderResult capped = renderFrame(job, 0);
+    EXPECT_TRUE(capped.stats.warnings.empty());
+    EXPECT_EQ(capped.image.find("R")->values, automatic.image.find("R")->values);
 }
 
 // The same crossing a centred shutter sees: every key half a frame earlier and the shutter -0.5 .. 0.5.
-// The probes run at negative times and find the same hole; auto segments split once and draw the wall.
+// The probes run at negative times and find the same hole; the deep tiles draw the wall.
 TEST(HiddenProbe, CentredShutterFindsTheSameHole) {
     RenderJob job = crossingJob();
     for (Object& o : job.scene.objects)
         for (TransformKey& k : o.transform) k.time -= 0.5;
     job.shutter = {-0.5, 0.5, {}};
     const RenderResult r = renderFrame(job, 0);
-    EXPECT_EQ(r.stats.clipped().segments, 2);
+    EXPECT_EQ(r.stats.clipped().segments, 1);
     EXPECT_EQ(r.stats.clipped().hidden_probe_hits, threeProbeHits(job.scene, -0.5, 0.5));
     EXPECT_EQ(r.stats.clipped().hidden_probe_hits, threeProbeHits(crossingJob().scene, 0.0, 1.0));
     double worst = 0.0;
     for (float v : r.image.find("R")->values) worst = std::max(worst, std::abs(v - 1.0));
-    EXPECT_LT(worst, 1e-5);  // as AutoSegmentsDrawTheWallBothEndsHide: coverage sums to 1 to float rounding
-}
-
-// At max_segments the hole cannot be split away: the render keeps the one segment and says so.
-TEST(HiddenProbe, SegmentsLeftHidingSomethingAtTheCapAreWarnedAbout) {
-    RenderJob job = crossingJob();
-    job.render.max_segments = 1;
-    const RenderResult capped = renderFrame(job, 0);
-    EXPECT_EQ(capped.stats.clipped().segments, 1);
-    EXPECT_EQ(capped.stats.clipped().hidden_probe_hits, threeProbeHits(job.scene, 0.0, 1.0));
-    ASSERT_EQ(capped.stats.warnings.size(), 1u);
-    EXPECT_NE(capped.stats.warnings[0].find("1 shutter segments still hide a surface"), std::string::npos);
+    EXPECT_LT(worst, 1e-5);  // as DeepTilesDrawTheWallBothEndsHide: coverage sums to 1 to float rounding
 }
 
 // The crossing quads in the top-left corner of a 256x256 film of 8x8 tiles, over a wall that drifts 1 px
 // (so sweep keeps it in the fragment sets rather than as a still backdrop). With point subframes every
-// surface is white, so the exact image is 1 (as in AutoSegmentsDrawTheWallBothEndsHide), where the
-// unsplit render has the hole; with sweep the wall is checkered. Auto segments split only the tiles near
-// the hole (their sets are well under a third of the film's: splitsLocally), with fragment sets over
-// what is within their reach. Each pixel must be bit-identical to the whole-film render split in two (on
-// the hole) or to the unsplit render (elsewhere): a share counted twice or lost across the split's edge (sweep's tiles
-// spill over it; a fixed re-clip count is shared out by each tile's segments) matches neither; a shard
-// across that edge must have the whole film's pixels. Point
-// subframes get a grey quad crossing and receding in the far corner too, so that one and two segments
-// differ there: they sample its time apart.
-TEST(HiddenProbe, SplitTilesDrawTheHoleAndTheRestRendersUnsplit) {
+// surface is white, so the exact image is 1 (as in DeepTilesDrawTheWallBothEndsHide), where the render
+// without the probe has the hole. The deep tiles are only those near the hole (under an eighth of the
+// film's), and a tile far from them re-clips what it did without them: its pixels are bit-identical to
+// that render's. A shard whose window holds part of the hole has the whole film's pixels, under point
+// subframes and under sweep (whose tiles spill over their edges).
+TEST(HiddenProbe, DeepTilesAreLocalAndTheRestRendersAsWithout) {
     constexpr int kSize = 256;
     RenderJob job = test::squareFilmJob(kSize);
     job.render.method = Method::Clipped;
@@ -245,18 +236,6 @@ TEST(HiddenProbe, SplitTilesDrawTheHoleAndTheRestRendersUnsplit) {
     job.scene.objects.push_back(test::movingQuad(-8.0, -8.0, 264.0, 264.0, 10.0, {1.0, 0.0}, kSize));
     job.scene.objects.push_back(test::movingQuad(4.0, 8.0, 12.0, 24.0, 5.0, {16.0, 0.0}, kSize));
     job.scene.objects.push_back(test::movingQuad(20.0, 8.0, 28.0, 24.0, 6.0, {-16.0, 0.0}, kSize));
-    Material grey;
-    grey.base_color = glm::dvec3(0.5);
-    job.scene.materials.push_back(grey);
-    // A grey quad that enters the split's tiles from outside them after mid-shutter and ends behind a
-    // white one: in the late half's sets only at its start, outside the tiles, where only the sets'
-    // margin (fragmentGrid) holds it (without the margin it is missing there and this test fails).
-    job.scene.objects.push_back(test::movingQuad(84.0, 28.0, 92.0, 40.0, 8.0, {-24.0, 0.0}, kSize));
-    job.scene.objects.back().material = 1;
-    job.scene.objects.push_back(test::rasterQuad(50.0, 26.0, 68.0, 42.0, 3.0, kSize));
-    Object far_quad = test::movingQuad(200.0, 204.0, 207.3, 215.1, 4.0, {13.3, 5.7}, kSize);
-    far_quad.material = 1;
-    far_quad.transform.back().translate.z += 3.0;  // receding: its path bends
     Material checker;
     checker.texture = {Texture::Kind::Checker, glm::dvec3(0.3), 0.7};
     for (const TimeIntegration integration : {TimeIntegration::Subframes, TimeIntegration::Sweep}) {
@@ -264,81 +243,52 @@ TEST(HiddenProbe, SplitTilesDrawTheHoleAndTheRestRendersUnsplit) {
         SCOPED_TRACE(sweep ? "sweep" : "subframes");
         RenderJob j = job;
         j.render.time_integration = integration;
-        // Sweep: 3 re-clips over the shutter (1 and 2 in the halves) leave footprints reaching past tiles.
-        // (Its positions are shared by a segment's tiles, so the far quad would move the hole's too.)
-        j.render.subframes = sweep ? 3 : 0;
-        if (!sweep) j.scene.objects.push_back(far_quad);
-        // Sweep: a checkered wall, so that a share counted twice shows (on white, coverage over 1 is
-        // normalised away).
         if (sweep) {
+            j.render.subframes = 3;  // re-clips: their footprints reach past tiles
             j.scene.materials.push_back(checker);
-            j.scene.objects[0].material = 2;
+            j.scene.objects[0].material = 1;
         }
-        const RenderResult split = renderFrame(j, 0);
-        j.render.segments = 1;
-        const RenderResult one = renderFrame(j, 0);
-        j.render.segments = 2;
-        const RenderResult two = renderFrame(j, 0);
-        const ClippedStats& stats = split.stats.clipped();
-        ASSERT_EQ(stats.segments, 3);  // [0, 1] over the far tiles, its halves over the hole's
-        EXPECT_GT(stats.segment_tiles, 1024);
-        EXPECT_LT(stats.segment_tiles, 1024 + 128);  // the halves cover under an eighth of the film
-        // The halves' opening set resolves only what is within reach of the hole's tiles.
-        EXPECT_LT(stats.open.fragments, 1.5 * static_cast<double>(one.stats.clipped().open.fragments));
-        if (sweep) {
-            EXPECT_GT(stats.sweep_spilled_pixels, 0);
-        }
-        double worst_split = 0.0, worst_one = 0.0;
-        int split_only = 0, unsplit_only = 0;
-        for (const char* channel : {"R", "A"}) {
-            const std::vector<float>& got = split.image.find(channel)->values;
-            const std::vector<float>& unsplit = one.image.find(channel)->values;
-            const std::vector<float>& halves = two.image.find(channel)->values;
+        j.render.segments = 0;
+        const RenderResult deep = renderFrame(j, 0);
+        const ClippedStats& stats = deep.stats.clipped();
+        EXPECT_EQ(stats.segments, 1);
+        EXPECT_GT(stats.open.deep_tiles, 0);
+        EXPECT_LT(stats.open.deep_tiles, 1024 / 8);
+        if (!sweep) {
+            j.render.segments = 1;  // as many segments, no probe, no deep tiles
+            const RenderResult without = renderFrame(j, 0);
+            double worst_deep = 0.0, worst_without = 0.0;
             for (int y = 0; y < kSize; ++y) {
                 for (int x = 0; x < kSize; ++x) {
                     const std::size_t i = static_cast<std::size_t>(y * kSize + x);
-                    const bool as_two = got[i] == halves[i], as_one = got[i] == unsplit[i];
-                    EXPECT_TRUE(as_two || as_one) << x << "," << y << " " << channel;
-                    if (x >= 4 && x < 28 && y >= 8 && y < 24) {
-                        EXPECT_TRUE(as_two) << x << "," << y << " " << channel;
+                    const float got = deep.image.find("R")->values[i], other = without.image.find("R")->values[i];
+                    if (x >= 64 || y >= 64) {
+                        EXPECT_EQ(got, other) << x << "," << y;
                     }
-                    if (x >= 64 && y >= 64) {
-                        EXPECT_TRUE(as_one) << x << "," << y << " " << channel;
-                    }
-                    split_only += as_two && !as_one;
-                    unsplit_only += as_one && !as_two;
-                    // The far quad stays in [176, 208) x [170, 222), the entering one in rows [28, 40).
-                    if ((x < 170 || y < 165) && (y < 28 || y >= 40)) {
-                        worst_split = std::max(worst_split, std::abs(got[i] - 1.0));
-                        worst_one = std::max(worst_one, std::abs(unsplit[i] - 1.0));
-                    }
+                    worst_deep = std::max(worst_deep, std::abs(got - 1.0));
+                    worst_without = std::max(worst_without, std::abs(other - 1.0));
                 }
             }
+            EXPECT_LT(worst_deep, 1e-5);
+            EXPECT_GT(worst_without, 0.5);  // the hole the deep tiles draw
+            j.render.segments = 0;
         }
-        EXPECT_GT(split_only, 0);
-        // A shard whose window crosses the split's edge has the whole film's pixels there.
-        j.render.segments = 0;
-        j.render.window = PixelBounds::corners(20, 10, 90, 70);
+        j.render.window = PixelBounds::corners(2, 10, 90, 70);
         const RenderResult shard = renderFrame(j, 0);
         int different = 0;
         for (int y = 10; y < 70; ++y)
-            for (int x = 20; x < 90; ++x)
-                different += split.image.find("R")->values[split.image.index(x, y)] ==
+            for (int x = 2; x < 90; ++x)
+                different += deep.image.find("R")->values[deep.image.index(x, y)] ==
                                      shard.image.find("R")->values[shard.image.index(x, y)]
                                  ? 0
                                  : 1;
         EXPECT_EQ(different, 0);
-        if (!sweep) {
-            EXPECT_GT(unsplit_only, 0);
-            EXPECT_LT(worst_split, 1e-5);  // sweep's 1 re-clip in [0, 0.5] does not resolve the crossing
-            EXPECT_GT(worst_one, 0.5);     // the hole the split draws
-        }
     }
 }
 
-// The probe's counts are integers summed in row order, so the split and the image do not depend on the
-// thread count.
-TEST(HiddenProbe, SameSplitForOneAndTwoThreads) {
+// The probe's counts are integers summed in row order, so the deep tiles and the image do not depend on
+// the thread count.
+TEST(HiddenProbe, SameDeepTilesForOneAndTwoThreads) {
     const RenderJob job = crossingJob();
     std::vector<RenderResult> results;
     for (int threads : {1, 2}) {
@@ -347,7 +297,7 @@ TEST(HiddenProbe, SameSplitForOneAndTwoThreads) {
     }
     const ClippedStats& one = results[0].stats.clipped();
     const ClippedStats& two = results[1].stats.clipped();
-    EXPECT_EQ(one.segments, two.segments);
+    EXPECT_EQ(one.open.deep_tiles, two.open.deep_tiles);
     EXPECT_EQ(one.hidden_probe_samples, two.hidden_probe_samples);
     EXPECT_EQ(one.hidden_probe_hits, two.hidden_probe_hits);
     for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
