@@ -56,23 +56,6 @@ void TileSet::addOverlapping(const TileGrid& grid, const PixelBounds& box) {
         for (int tx = t.x0; tx < t.x1; ++tx) in_[static_cast<std::size_t>(ty * grid.columns() + tx)] = 1;
 }
 
-bool TileSet::overlaps(const TileGrid& grid, const PixelBounds& box) const {
-    const PixelBounds t = grid.tilesOverlapping(box);
-    for (int ty = t.y0; ty < t.y1; ++ty)
-        for (int tx = t.x0; tx < t.x1; ++tx)
-            if (contains(ty * grid.columns() + tx)) return true;
-    return false;
-}
-
-PixelBounds TileSet::bounds(const TileGrid& grid) const {
-    PixelBounds box;
-    for (int i = 0; i < grid.count(); ++i) {
-        if (!contains(i)) continue;
-        box = box.empty() ? grid.tile(i) : box.unite(grid.tile(i));
-    }
-    return box;
-}
-
 TileSet TileSet::grown(const TileGrid& grid, int margin, const TileGrid& to) const {
     if (every_) return *this;
     TileSet out(false);
@@ -84,36 +67,12 @@ TileSet TileSet::grown(const TileGrid& grid, int margin, const TileGrid& to) con
     return out;
 }
 
-TileSet TileSet::intersect(const TileSet& other) const {
-    if (every_) return other;
-    if (other.every_) return *this;
-    TileSet out(false);
-    out.in_.resize(std::min(in_.size(), other.in_.size()), 0);
-    for (std::size_t i = 0; i < out.in_.size(); ++i) out.in_[i] = in_[i] & other.in_[i];
-    return out;
-}
-
 TileSet TileSet::unite(const TileSet& other) const {
     if (every_ || other.every_) return TileSet();
     TileSet out(false);
     out.in_.resize(std::max(in_.size(), other.in_.size()), 0);
     for (std::size_t i = 0; i < out.in_.size(); ++i)
         out.in_[i] = (i < in_.size() && in_[i]) || (i < other.in_.size() && other.in_[i]) ? 1 : 0;
-    return out;
-}
-
-TileSet TileSet::minus(const TileSet& other) const {
-    if (other.every_) return none();
-    TileSet out(false);
-    if (every_) {
-        // Once other holds a tile its indices span the grid; holding none, it takes nothing away.
-        out.every_ = other.in_.empty();
-        out.in_.resize(other.in_.size(), 0);
-        for (std::size_t i = 0; i < out.in_.size(); ++i) out.in_[i] = other.in_[i] ? 0 : 1;
-        return out;
-    }
-    out.in_ = in_;
-    for (std::size_t i = 0; i < std::min(in_.size(), other.in_.size()); ++i) out.in_[i] &= other.in_[i] ? 0 : 1;
     return out;
 }
 

@@ -37,8 +37,8 @@ private:
     int rows_;
 };
 
-// A set of a TileGrid's tiles, by index: the part of the film a shutter segment renders. Default: every
-// tile, of any grid (the whole film, as the paper's single segment has it).
+// A set of a TileGrid's tiles, by index: where a shutter segment's fragment sets keep every layer
+// (ShutterSegment::deep). Default: every tile, of any grid.
 class TileSet {
 public:
     TileSet() = default;
@@ -53,15 +53,9 @@ public:
     int size(const TileGrid& grid) const;
     // Adds the tiles of `grid` that overlap `box`.
     void addOverlapping(const TileGrid& grid, const PixelBounds& box);
-    // Whether a member tile of `grid` overlaps `box`.
-    bool overlaps(const TileGrid& grid, const PixelBounds& box) const;
-    // The smallest rectangle holding every member tile of `grid`; empty when there is none.
-    PixelBounds bounds(const TileGrid& grid) const;
     // The tiles of `to` that overlap a member tile of `grid` grown by `margin` pixels on each side.
     TileSet grown(const TileGrid& grid, int margin, const TileGrid& to) const;
-    TileSet intersect(const TileSet& other) const;
     TileSet unite(const TileSet& other) const;
-    TileSet minus(const TileSet& other) const;
 
     friend bool operator==(const TileSet&, const TileSet&) = default;
 

@@ -131,8 +131,7 @@ struct FrontOverBackdrop {
     WindowSums& front;  // cleared where read, so the next segment can reuse it
     const PixelSums& backdrop;
     const MotionPlan& plan;
-    const TileSet& tiles;  // the segment's
-    double weight = 1.0;   // the segment's
+    double weight = 1.0;  // the segment's
 };
 // What the backdrop adds to a pixel's level differences: it shows through as much as the front leaves
 // uncovered, so a covered-area difference d shows as -d x the backdrop's colour and covered area.
@@ -151,7 +150,6 @@ void compositeBackdrop(const ClippedContext& ctx, const FrontOverBackdrop& layer
         for (int x = window.x0; x < window.x1; ++x) {
             const std::size_t i = window.index(x, y);
             const int tile = grid.indexOf(x, y);
-            if (!layers.tiles.contains(tile)) continue;
             sums.addPixel(i, front);
             if (layers.plan.backdrop[static_cast<std::size_t>(tile)]) {
                 const double seen = weight * (1.0 - std::clamp(front.covered[i] / weight, 0.0, 1.0));
@@ -196,14 +194,13 @@ struct SegmentSpec {
     double weight = 1.0;
     double curve_begin = 1.0, curve_end = 1.0;  // the shutter curve at begin and end (ShutterSegment)
     int subframes = 0;  // > 0: this segment's fixed re-clip count
-    const TileSet& tiles;  // the film tiles whose pixels it renders
     // Film tiles where its sets keep every layer (ShutterSegment::deep); the next segment's, which a
     // closing set it opens with keeps as well.
     const TileSet& deep;
     const TileSet& next_deep;
     int index = 0;
     std::span<const int> bands;  // every segment's guard band (guardBandPixels), in order
-    bool next_adjacent = false;  // the next segment begins where this one ends, over the same tiles: it opens with our closing set
+    bool next_adjacent = false;  // the next segment begins where this one ends: it opens with our closing set
     std::span<const double> next_times;  // the next segment's ends: Embree keeps their scenes, frees the rest
 };
 
@@ -216,23 +213,10 @@ struct SegmentEnds {
 };
 
 // The tiles a segment's fragment sets resolve: the film and a guard band `band` wide, aligned to the
-// band's corner, or where the segment renders part of the film, the part of that grid within reach of
-// it. What reaches the part's pixels during the segment is within a sweep apron of it (a path's length
-// and 2 px; a segment's paths are nearly straight, turning 15 degrees at most, so a path is about twice
-// as long as its middle is far from its nearer end, at most 2 band), and in the sets within `band` of
-// where it is then: 3 band + 2, and a tile of slack.
-TileGrid fragmentGrid(const ClippedContext& ctx, const TileSet& tiles, int band) {
+// band's corner.
+TileGrid fragmentGrid(const ClippedContext& ctx, int band) {
     const Film& film = ctx.job.scene.film;
-    const int size = ctx.job.render.tile_size;
-    const TileGrid whole(-band, -band, film.width + 2 * band, film.height + 2 * band, size);
-    if (tiles.every()) return whole;
-    const int margin = size + 3 * band + 4;
-    const PixelBounds box = tiles.bounds(ctx.frame.grid);
-    const PixelBounds t = whole.tilesOverlapping(
-        PixelBounds::corners(box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin));
-    const int x0 = -band + t.x0 * size, y0 = -band + t.y0 * size;
-    const int x1 = std::min(-band + t.x1 * size, film.width + band), y1 = std::min(-band + t.y1 * size, film.height + band);
-    return TileGrid(x0, y0, x1 - x0, y1 - y0, size);
+    return TileGrid(-band, -band, film.width + 2 * band, film.height + 2 * band, ctx.job.render.tile_size);
 }
 
 // Fragment sets over the image and a guard band wide enough that everything seen during the segment is
@@ -251,7 +235,7 @@ SegmentEnds buildSegmentEnds(const ClippedContext& ctx, const SegmentSpec& seg, 
     int band = seg.bands[static_cast<std::size_t>(seg.index)];
     totals.stats.guard_band_pixels = std::max<long long>(totals.stats.guard_band_pixels, band);
     if (carry) band = std::max(band, seg.bands[static_cast<std::size_t>(seg.index) + 1]);
-    const TileGrid grid = fragmentGrid(ctx, seg.tiles, band);
+    const TileGrid grid = fragmentGrid(ctx, band);
     // Deep tiles hold what a surface hidden at both ends was seen over, within reach; its points at the
     // ends are within `band` of there.
     const TileSet open_deep = seg.deep.grown(ctx.frame.grid, band, grid);
@@ -399,7 +383,6 @@ SegmentIntegration integrationOf(const ClippedContext& ctx, const SegmentSpec& s
             .span = {.t0 = seg.window.t0, .t1 = seg.window.t1, .curve_begin = seg.curve_begin, .curve_end = seg.curve_end},
             .weight = seg.weight,
             .subframes = seg.subframes,
-            .tiles = seg.tiles,
             .shadows = settings.shadows,
             .audit = settings.audit,
             .track_objects = ctx.job.output.cryptomatte.enabled,
@@ -475,7 +458,7 @@ void renderSegment(const ClippedContext& ctx, const SegmentSpec& seg, WindowSums
     std::vector<std::vector<Spill>> spills =
         integrateTiles(ctx, seg, integrationOf(ctx, seg, ends, plan, snapshots), target, totals.stats);
     addSpills(spills, ctx.window, ctx.frame.grid.tileSize(), target);
-    if (front) compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.tiles, seg.weight}, sums);
+    if (front) compositeBackdrop(ctx, {*front, *totals.backdrop, plan.motion, seg.weight}, sums);
     totals.spare_stills.push_back(std::move(ends.still));
     totals.stats.seconds.tiles += secondsSince(stage);
 }
@@ -506,7 +489,6 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
         }
     }
     stats.segments = static_cast<long long>(segments.size());
-    for (const ShutterSegment& s : segments) stats.segment_tiles += s.tiles.size(ctx.frame.grid);
     // The probe's Embree scenes but those the first segment's fragment sets need.
     const MotionWindow first = ctx.frame.motion.window(segments.front().begin, segments.front().end);
     ctx.frame.embree.releaseSegmentScenes(std::array{first.t0, first.t1});
@@ -514,16 +496,6 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
     stats.hidden_probe_hits = probe.hidden;
     stats.seconds.hidden_probe = secondsSince(stage);
     return segments;
-}
-
-// The shutter's fraction before segment s where it renders: the weights of the earlier segments over
-// one of its tiles (those over a tile follow each other in time, splitWhereHidden).
-double shareBefore(const std::vector<ShutterSegment>& segments, std::size_t s) {
-    int tile = 0;
-    while (!segments[s].tiles.contains(tile)) ++tile;
-    double share = 0.0;
-    for (std::size_t j = 0; j < s; ++j) share += segments[j].tiles.contains(tile) ? segments[j].weight : 0.0;
-    return share;
 }
 
 // Renders every segment into `sums`. A fixed subframe count is shared out so the shutter has that many
@@ -542,10 +514,10 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
     }
     // A fixed count's share before a fraction of the shutter (1e-9: sums of 1/n reach whole numbers).
     const auto before = [&](double fraction) { return static_cast<int>(std::floor(fixed_total * fraction + 1e-9)); };
+    double share = 0.0;  // of the shutter, before segment s
     for (std::size_t s = 0; s < segments.size(); ++s) {
         const bool last = s + 1 == segments.size();
         const std::array<double, 2> next = last ? std::array<double, 2>{} : std::array{windows[s + 1].t0, windows[s + 1].t1};
-        const double share = shareBefore(segments, s);
         const int fixed = fixed_total > 0 ? std::max(1, before(share + segments[s].weight) - before(share)) : 0;
         const ShutterSegment& segment = segments[s];
         const SegmentSpec spec{.window = windows[s],
@@ -553,15 +525,14 @@ void renderSegments(const ClippedContext& ctx, const std::vector<ShutterSegment>
                                .curve_begin = segment.curve_begin,
                                .curve_end = segment.curve_end,
                                .subframes = fixed,
-                               .tiles = segment.tiles,
                                .deep = segment.deep,
                                .next_deep = last ? segment.deep : segments[s + 1].deep,
                                .index = static_cast<int>(s),
                                .bands = bands,
-                               .next_adjacent = !last && segments[s + 1].begin == segment.end &&
-                                                segments[s + 1].tiles == segment.tiles,
+                               .next_adjacent = !last && segments[s + 1].begin == segment.end,
                                .next_times = last ? std::span<const double>() : std::span<const double>(next)};
         renderSegment(ctx, spec, sums, totals);
+        share += segment.weight;
     }
     totals.stats.seconds.segments = secondsSince(stage);
 }

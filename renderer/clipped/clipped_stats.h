@@ -45,7 +45,6 @@ struct ClippedStats {
     bool ode = false;         // render.path_method euler or rk4
     long long tiles = 0, triangles = 0, segments = 0, frame_sets = 0, guard_band_pixels = 0;
     long long hidden_probe_samples = 0, hidden_probe_hits = 0;
-    long long segment_tiles = 0;  // the film tiles each segment renders, summed (a split is local)
     long long still_tiles = 0, subframes_total = 0, subframes_max_per_tile = 0, capped_tiles = 0;
     long long measured_fragment_paths = 0, near_crossing_fragments = 0;
     long long sweep_spilled_pixels = 0, sweep_backdrop_tiles = 0;  // sweep: see SegmentTotals, MotionPlan
@@ -75,7 +74,6 @@ struct ClippedStats {
         f.count("tiles", tiles);
         f.count("triangles", triangles);
         f.count("segments", segments);
-        f.count("segment_tiles", segment_tiles);
         f.count("hidden_probe_samples", hidden_probe_samples);
         f.count("hidden_probe_hits", hidden_probe_hits);
         f.count("frame_sets", frame_sets);

@@ -24,8 +24,7 @@ bool heldAt(const MotionSnapshot& end, const Scene& scene, const EmbreeScene& em
 
 }  // namespace
 
-HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset,
-                                  const TileSet& within) {
+HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset) {
     const Scene& scene = frame.scene();
     const EmbreeScene& embree = frame.embree;
     const Projection& projection = frame.projection;
@@ -41,7 +40,6 @@ HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, d
         const int y = r * kProbeStride + oy;
         for (int c = 0; c < columns; ++c) {
             const int x = c * kProbeStride + ox;
-            if (!within.contains(frame.grid.indexOf(x, y))) continue;
             const glm::dvec2 p = projection.toImagePlane(glm::dvec2(x + 0.5, y + 0.5));
             const EmbreeHit hit = embree.intersect(camera.position, camera.e3 + p.x * camera.e1 + p.y * camera.e2, at);
             if (!hit.hit) continue;
@@ -72,7 +70,7 @@ TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, cons
     std::vector<glm::ivec2> hidden;
     for (std::size_t k = 0; k < kAt.size(); ++k) {
         const HiddenProbe probe =
-            probeHiddenAtBothEnds(frame, a, b, a + (b - a) * kAt[k], static_cast<int>(k), segment.tiles);
+            probeHiddenAtBothEnds(frame, a, b, a + (b - a) * kAt[k], static_cast<int>(k));
         total.samples += probe.samples;
         total.hidden += probe.hidden;
         hidden.insert(hidden.end(), probe.pixels.begin(), probe.pixels.end());
@@ -82,7 +80,7 @@ TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, cons
     const int r = reach() + kProbeStride;
     for (const glm::ivec2& p : hidden)
         where.addOverlapping(frame.grid, PixelBounds::corners(p.x - r, p.y - r, p.x + r + 1, p.y + r + 1));
-    return where.intersect(segment.tiles);
+    return where;
 }
 
 }  // namespace clipblur

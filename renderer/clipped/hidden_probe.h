@@ -32,16 +32,14 @@ inline constexpr int kProbeStride = 2;
 // camera can appear a hair behind its own neighbours).
 inline constexpr double kHeldDepthTolerance = 1e-3;
 
-// Probes the film's tiles `within` (frame.grid) at time `at`, strictly inside [a, b], with probe offset
-// `offset` (0-3).
-HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset,
-                                  const TileSet& within = {});
+// Probes the film at time `at`, strictly inside [a, b], with probe offset `offset` (0-3).
+HiddenProbe probeHiddenAtBothEnds(const FrameSetup& frame, double a, double b, double at, int offset);
 
 // Whether anything seen from the camera can change what it hides during [t0, t1]: false when the eye does
 // not move and no object moves (a camera that only turns sees the same surfaces from the same point).
 bool visibilityCanChange(const MotionWindow& window);
 
-// The tiles of segment.tiles where the probe, at times a quarter, half and three quarters into the
+// The film tiles (frame.grid) where the probe, at times a quarter, half and three quarters into the
 // segment, finds a surface hidden at both its ends: those within reach() pixels (how far anything moves
 // over the segment; asked only when something is hidden, as measuring it scans the scene) plus a probe
 // cell of a hidden point, since the surface can show anywhere it passes. Empty when nothing is hidden.

@@ -19,7 +19,7 @@ std::vector<ShutterSegment> equalSegments(double t0, double t1, int count) {
     double begin = t0;
     for (int s = 1; s <= count; ++s) {
         const double end = t0 + (t1 - t0) * s / count;  // as every segment's times have always been
-        segments.push_back({begin, end, 1.0 / count, 1.0, 1.0, {}});
+        segments.push_back({begin, end, 1.0 / count, 1.0, 1.0});
         begin = end;
     }
     return segments;
@@ -28,18 +28,18 @@ std::vector<ShutterSegment> equalSegments(double t0, double t1, int count) {
 std::vector<ShutterSegment> splitAtCurve(const std::vector<ShutterSegment>& segments, const ShutterCurve& curve) {
     if (curve.box()) return segments;
     std::vector<ShutterSegment> out;
-    const auto piece = [&](double begin, double end, const TileSet& tiles) {
-        const ShutterSegment s{begin, end, curve.mass(begin, end), curve.weightAt(begin), curve.weightAt(end), tiles, {}};
+    const auto piece = [&](double begin, double end) {
+        const ShutterSegment s{begin, end, curve.mass(begin, end), curve.weightAt(begin), curve.weightAt(end)};
         if (s.curve_begin > 0.0 || s.curve_end > 0.0) out.push_back(s);
     };
     for (const ShutterSegment& s : segments) {
         double begin = s.begin;
         for (const double t : curve.times()) {
             if (t <= s.begin || t >= s.end) continue;
-            piece(begin, t, s.tiles);
+            piece(begin, t);
             begin = t;
         }
-        piece(begin, s.end, s.tiles);
+        piece(begin, s.end);
     }
     return out;
 }

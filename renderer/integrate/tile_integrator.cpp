@@ -99,7 +99,7 @@ void addOwnPixels(const TilePass& pass, const WeightedSubframes& subframes, doub
     const SegmentIntegration& segment = pass.segment;
     const PixelBounds film = segment.frame.scene().film.pixels();
     const PixelBounds& window = segment.window;
-    const PixelBounds mine = segment.tiles.contains(pass.index) ? pass.tile.intersect(window) : PixelBounds();
+    const PixelBounds mine = pass.tile.intersect(window);
     for (int y = mine.y0; y < mine.y1; ++y) {
         for (int x = mine.x0; x < mine.x1; ++x) {
             const std::size_t pixel_out = window.index(x, y);
@@ -111,20 +111,18 @@ void addOwnPixels(const TilePass& pass, const WeightedSubframes& subframes, doub
     }
 }
 
-// Sweep: what a tile's subframes left in the window's pixels of the segment's other tiles, scaled by w,
-// in row-major order.
+// Sweep: what a tile's subframes left in the window's pixels of other tiles, scaled by w, in row-major
+// order.
 void collectSpills(const TilePass& pass, const WeightedSubframes& subframes, double w, std::vector<Spill>& spilled) {
     const PixelBounds& tile = pass.tile;
     const PixelBounds& window = pass.segment.window;
-    const TileGrid& grid = pass.segment.frame.grid;
-    const TileSet& tiles = pass.segment.tiles;
     const std::vector<TileSums>& tile_sums = subframes.sums;
     PixelBounds reached = tile_sums[0].box;  // what the subframes' footprints reach
     for (const TileSums& s : tile_sums) reached = reached.unite(s.box);
     const PixelBounds seen = reached.intersect(window);
     for (int y = seen.y0; y < seen.y1; ++y) {
         for (int x = seen.x0; x < seen.x1; ++x) {
-            if (tile.contains(x, y) || !tiles.contains(grid.indexOf(x, y))) continue;
+            if (tile.contains(x, y)) continue;
             Spill sum = subframeTotal(subframes, x, y);
             if (sum.covered == 0.0) continue;
             sum.out = window.index(x, y);
@@ -144,7 +142,7 @@ void collectSpills(const TilePass& pass, const WeightedSubframes& subframes, dou
 int integrateTile(const SegmentIntegration& segment, int index, TileOutputs& out, ReclipStats& stats) {
     TilePass pass = planTile(segment, index);
     const PixelBounds reach = pass.sweep.box.x0 < pass.sweep.box.x1 ? pass.sweep.box : pass.tile;
-    if (!segment.tiles.overlaps(segment.frame.grid, reach.intersect(segment.window))) return -1;
+    if (reach.intersect(segment.window).empty()) return -1;
     pass.layout = subframeLayout(segment.span, pass.n);
     const bool sweeping = segment.sweep != nullptr;
     std::vector<TileSums> sums(static_cast<std::size_t>(pass.n));

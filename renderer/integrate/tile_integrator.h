@@ -23,7 +23,6 @@ struct SegmentIntegration {
     SegmentSpan span;
     double weight = 1.0;
     int subframes = 0;           // > 0: the segment's fixed re-clip count (no tile is then taken as still)
-    const TileSet& tiles;        // the film tiles whose pixels it writes (ShutterSegment::tiles)
     bool shadows = false;        // a moving shadow can change a still tile's lighting
     bool audit = false;          // check every resolved pixel (ReclipStats::audit)
     bool track_objects = false;  // ID mattes
@@ -49,8 +48,8 @@ struct TileOutputs {
 // Steps 3-5 for tile `index`: per subframe propagate, re-clip and reduce; the tile adds weight x the
 // average of its subframes to its pixels, in subframe order (bit-identical for any thread count). Where
 // nothing moves (and no moving shadow can change the lighting between the frames) the segment-start
-// image is the answer. Writes only the pixels of segment.tiles in the window. Returns the tile's re-clip
-// count, or -1 when nothing it reaches is there.
+// image is the answer. Writes only the pixels of the window. Returns the tile's re-clip count, or -1
+// when nothing it reaches is in the window.
 int integrateTile(const SegmentIntegration& segment, int index, TileOutputs& out, ReclipStats& stats);
 
 }  // namespace clipblur

@@ -52,8 +52,8 @@ MODES = {
 
 # Counts that depend only on the scene and the algorithm, not on timing or thread count.
 EXACT_COUNTS = {
-    "clipped": ["triangles", "tiles", "segments", "segment_tiles", "hidden_probe_samples", "hidden_probe_hits", "frame_sets",
-                "still_tiles", "subframes_total", "subframes_max_per_tile", "capped_tiles",
+    "clipped": ["triangles", "tiles", "segments", "open_deep_tiles", "close_deep_tiles", "hidden_probe_samples",
+                "hidden_probe_hits", "frame_sets", "still_tiles", "subframes_total", "subframes_max_per_tile", "capped_tiles",
                 "measured_fragment_paths", "propagated_triangles", "reclip_fragments", "reclip_mixed_fragments",
                 "reclip_near_clipped", "open_rays", "open_candidates", "open_fragments", "open_shaded_pieces",
                 "close_rays", "close_candidates", "close_fragments", "close_shaded_pieces"],
@@ -63,8 +63,9 @@ EXACT_COUNTS = {
 }
 # The many-object scenes' counts (sweep, automatic re-clips), rendered at the mode's size.
 MANY_SCENES = ["particles", "street", "deforming", "building_dolly"]
-MANY_COUNTS = ["segments", "segment_tiles", "frame_sets", "subframes_total", "subframes_max_per_tile", "capped_tiles",
-               "reclip_fragments", "sweep_positions", "sweep_spilled_pixels", "sweep_unswept_fragments"]
+MANY_COUNTS = ["segments", "open_deep_tiles", "close_deep_tiles", "frame_sets", "subframes_total",
+               "subframes_max_per_tile", "capped_tiles", "reclip_fragments", "sweep_positions", "sweep_spilled_pixels",
+               "sweep_unswept_fragments"]
 # The same scenes under the default `time_integration: auto`, gated under "many-auto/<name>": which
 # method each segment takes is a count too, so a cost-model change that flips a choice shows here.
 AUTO_COUNTS = MANY_COUNTS + ["segments_points", "segments_sweep"]
