@@ -57,8 +57,6 @@ public:
     TileSet grown(const TileGrid& grid, int margin, const TileGrid& to) const;
     TileSet unite(const TileSet& other) const;
 
-    friend bool operator==(const TileSet&, const TileSet&) = default;
-
 private:
     explicit TileSet(bool every) : every_(every) {}
     bool every_ = true;
