@@ -33,6 +33,7 @@ void propagate(const TileReclip& tile, const ReclipTime& at, FragmentRef ref, Re
         s.source = static_cast<std::uint32_t>(scratch.screen.size());
         s.layer = ref.layer();
         s.weight = weight;
+        s.surface = std::uint64_t(source.object) << 32 | source.triangle;
         scratch.screen.push_back(s);
         scratch.origin.push_back(ref);
         scratch.sources.push_back(source);

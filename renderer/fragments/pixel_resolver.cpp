@@ -63,21 +63,30 @@ void PixelResolver::insert(const ScreenTriangle& t) {
 }
 
 void PixelResolver::insertClipped(const ScreenTriangle& t, const ConvexPolygon& clipped) {
+    PixelPiece piece;
+    if (prepare(t, 0, clipped, piece)) insertPrepared(t, piece);
+}
+
+bool PixelResolver::prepare(const ScreenTriangle& t, std::uint32_t triangle, const ConvexPolygon& clipped,
+                            PixelPiece& out) {
     if (t.layer > 1) throw std::invalid_argument("ScreenTriangle::layer must be 0 or 1");
     fragments_valid_ = false;
-    if (clipped.degenerate()) return;  // most pixels of a triangle's box outside it: no plane needed
+    if (clipped.degenerate()) return false;  // most pixels of a triangle's box outside it: no plane needed
     const glm::dvec2 origin(px_, py_);
-    DepthPlane plane;
-    if (!inverseDepthPlane(t, origin, plane)) {
+    if (!inverseDepthPlane(t, origin, out.plane)) {
         ++rejected_;
-        return;
+        return false;
     }
-    ConvexPolygon piece = clipped;
+    out.triangle = triangle;
+    out.poly = clipped;
     // Exact: every vertex lies in [px, px+1] x [py, py+1].
-    for (int i = 0; i < piece.n; ++i) piece.v[i] -= origin;
-    double area = 0.0;
-    if (dropIfSliver(piece, area)) return;
-    insertPolygon(piece, area, plane, FragmentSource{t.source, t.layer, t.weight});
+    for (int i = 0; i < out.poly.n; ++i) out.poly.v[i] -= origin;
+    return !dropIfSliver(out.poly, out.area);
+}
+
+void PixelResolver::insertPrepared(const ScreenTriangle& t, const PixelPiece& piece) {
+    fragments_valid_ = false;
+    insertPolygon(piece.poly, piece.area, piece.plane, FragmentSource{t.source, t.layer, t.weight});
 }
 
 void PixelResolver::queueWork(const ConvexPolygon& poly, std::size_t start, double area) {

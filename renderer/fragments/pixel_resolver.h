@@ -32,6 +32,15 @@ struct ResolverSettings {
 // order. Work happens in pixel-local coordinates (raster minus pixel corner, an exact subtraction), so
 // depth planes and areas do not cancel at large raster coordinates. Scratch buffers are members and reused
 // across pixels: after warm-up there is no allocation per polygon.
+// A triangle's part in one pixel, ready to insert: pixel-local (raster minus the pixel's corner), with
+// its inverse-depth plane in the same coordinates and its area.
+struct PixelPiece {
+    std::uint32_t triangle = 0;  // the caller's index of the ScreenTriangle
+    ConvexPolygon poly;
+    DepthPlane plane;
+    double area = 0.0;
+};
+
 class PixelResolver {
 public:
     explicit PixelResolver(ResolverSettings settings = {}) : settings_(settings) {}
@@ -43,6 +52,11 @@ public:
     // insert for a triangle already validated and clipped to this pixel by its TriangleClipper (`piece`,
     // raster space): what resolveTile does, which clips each triangle's row strip once per row.
     void insertClipped(const ScreenTriangle& t, const ConvexPolygon& piece);
+    // insertClipped in two steps, for a caller that looks at the pieces first: prepare makes the piece
+    // pixel-local with its plane and area, false when there is nothing to insert (no area, no plane: counted
+    // as rejected, or a sliver: added to droppedArea); insertPrepared inserts it.
+    bool prepare(const ScreenTriangle& t, std::uint32_t triangle, const ConvexPolygon& piece, PixelPiece& out);
+    void insertPrepared(const ScreenTriangle& t, const PixelPiece& piece);
 
     // The fragments in raster space; the order is a pure function of the insertion sequence.
     const std::vector<Fragment>& fragments();

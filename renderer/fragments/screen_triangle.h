@@ -21,6 +21,12 @@ struct ScreenTriangle {
     std::uint32_t source = 0;  // caller's index (mesh triangle, propagated fragment, ...)
     std::uint8_t layer = 0;    // 0 or 1: which bounding frame the triangle comes from
     float weight = 1.0f;       // mix weight when surfaces of both layers coincide
+    // The planar surface (mesh triangle) the triangle is a piece of, or kNoSurface. Pieces with one key lie
+    // on one plane and those of one layer do not overlap: what lets resolveTile skip clipping a pixel that
+    // one surface covers wholly.
+    std::uint64_t surface = kNoSurface;
+
+    static constexpr std::uint64_t kNoSurface = ~std::uint64_t(0);
 };
 
 // Finite raster vertices, finite positive inverse depths (in front of the eye) and non-zero area.

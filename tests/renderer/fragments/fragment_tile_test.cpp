@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "renderer/fragments/fragment_audit.h"
 #include "renderer/fragments/fragment_tile.h"
 #include "tests/renderer/fragments/fragment_test_util.h"
 
@@ -36,7 +37,173 @@ std::vector<ScreenTriangle> jitteredMesh(std::mt19937_64& rng, const testing::Pl
     return tris;
 }
 
+// One surface cut into unit squares (two triangles each) on a grid offset by `offset`, over [-2, 12]^2:
+// what a layer's pixel fragments of one mesh triangle look like once moved to a re-clip's time.
+std::vector<ScreenTriangle> squarePieces(const glm::dvec2& offset, const testing::Plane& w, std::uint8_t layer,
+                                         float weight, std::uint64_t surface) {
+    std::vector<ScreenTriangle> tris;
+    for (int j = -2; j < 12; ++j) {
+        for (int i = -2; i < 12; ++i) {
+            const glm::dvec2 lo = offset + glm::dvec2(i, j);
+            for (ScreenTriangle t : testing::makeQuad(lo.x, lo.y, lo.x + 1, lo.y + 1, w,
+                                                      std::uint32_t(layer * 1000 + tris.size()), layer, weight)) {
+                t.surface = surface;
+                tris.push_back(t);
+            }
+        }
+    }
+    return tris;
+}
+
+std::vector<ScreenTriangle> withoutSurfaces(std::vector<ScreenTriangle> tris) {
+    for (ScreenTriangle& t : tris) t.surface = ScreenTriangle::kNoSurface;
+    return tris;
+}
+
+// A tile resolved with the surface keys (whole pixels kept whole) and without (every pixel clipped).
+struct BothWays {
+    FragmentTile whole;
+    FragmentTile clipped;
+};
+BothWays resolveBothWays(const std::vector<ScreenTriangle>& tris, const PixelBounds& rect) {
+    TileScratch scratch;
+    BothWays out;
+    resolveTile(tris, rect, {}, scratch, out.whole);
+    resolveTile(withoutSurfaces(tris), rect, {}, scratch, out.clipped);
+    return out;
+}
+
+bool sameFragments(const FragmentTile& a, const FragmentTile& b) {
+    if (a.offsets != b.offsets || a.fragments.size() != b.fragments.size()) return false;
+    for (std::size_t i = 0; i < a.fragments.size(); ++i) {
+        const Fragment &f = a.fragments[i], &g = b.fragments[i];
+        if (f.vertex_count != g.vertex_count || f.sources != g.sources || f.area != g.area) return false;
+        if (!std::equal(f.vertices.begin(), f.vertices.begin() + f.vertex_count, g.vertices.begin())) return false;
+    }
+    return true;
+}
+
 }  // namespace
+
+TEST(FragmentTile, PixelWhollyInsideOneSurfaceFromBothLayersIsOneMixedFragment) {
+    const testing::Plane w{0.001, -0.002, 0.5};
+    std::vector<ScreenTriangle> tris = squarePieces({0.3, 0.6}, w, 0, 0.25f, 7);
+    const auto closing = squarePieces({0.75, 0.15}, w, 1, 0.75f, 7);
+    tris.insert(tris.end(), closing.begin(), closing.end());
+    const PixelBounds rect = PixelBounds::sized(1, 1, 7, 7);
+    auto [whole, clipped] = resolveBothWays(tris, rect);
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            const auto pixel = whole.pixel(x, y);
+            ASSERT_EQ(pixel.size(), 1u) << x << "," << y;
+            const Fragment& f = pixel[0];
+            EXPECT_EQ(f.area, 1.0);
+            ASSERT_EQ(f.source_count, 2);
+            EXPECT_EQ(f.sources[0].layer, 0);
+            EXPECT_EQ(f.sources[1].layer, 1);
+            EXPECT_DOUBLE_EQ(f.mix(1), 0.75);
+            // Clipped against each other, the two grids cut the pixel into up to nine pieces, every one
+            // mixed, covering it to rounding of O(10) coordinates.
+            double area = 0.0;
+            for (const Fragment& g : clipped.pixel(x, y)) {
+                area += g.area;
+                EXPECT_EQ(g.source_count, 2);
+            }
+            EXPECT_GT(clipped.pixel(x, y).size(), 1u);
+            EXPECT_NEAR(area, 1.0, 1e-12);
+        }
+    }
+    AuditStats audit;
+    auditTile(tris, whole, audit);
+    EXPECT_EQ(audit.violations, 0) << audit.first_violation;
+    EXPECT_EQ(audit.pixels, 49);
+}
+
+TEST(FragmentTile, PixelsWithAHoleOrTwoDepthsAreClippedAsBefore) {
+    const testing::Plane w{0.001, -0.002, 0.5};
+    std::vector<ScreenTriangle> tris = squarePieces({0.3, 0.6}, w, 0, 0.5f, 7);
+    // A hole: the closing layer misses one square, so the four pixels it overlaps are covered by one
+    // layer only in part.
+    std::vector<ScreenTriangle> closing = squarePieces({0.75, 0.15}, w, 1, 0.5f, 7);
+    closing.erase(closing.begin() + 2 * (14 * 6 + 6), closing.begin() + 2 * (14 * 6 + 6) + 2);
+    tris.insert(tris.end(), closing.begin(), closing.end());
+    const PixelBounds rect = PixelBounds::sized(1, 1, 7, 7);
+    auto [whole, clipped] = resolveBothWays(tris, rect);
+    int single = 0;
+    for (const Fragment& f : whole.fragments) single += f.source_count == 1;
+    EXPECT_GT(single, 0);  // the hole is seen through to the opening layer alone
+    // The hole's square spans [4.75, 5.75] x [4.15, 5.15]: pixels (4..5, 4..5) are clipped as without keys.
+    for (int y = 4; y < 6; ++y)
+        for (int x = 4; x < 6; ++x) EXPECT_GT(whole.pixel(x, y).size(), 1u) << x << "," << y;
+    AuditStats audit;
+    auditTile(tris, whole, audit);
+    EXPECT_EQ(audit.violations, 0) << audit.first_violation;
+
+    // Planes 1e-5 apart (above the 1e-6 coincidence tolerance) are two surfaces, not one: every pixel is
+    // clipped, bit for bit as without keys.
+    std::vector<ScreenTriangle> apart = squarePieces({0.3, 0.6}, w, 0, 0.5f, 7);
+    const auto behind = squarePieces({0.75, 0.15}, {w.a, w.b, w.c * (1 - 1e-5)}, 1, 0.5f, 7);
+    apart.insert(apart.end(), behind.begin(), behind.end());
+    const BothWays two = resolveBothWays(apart, rect);
+    EXPECT_TRUE(sameFragments(two.whole, two.clipped));
+    for (const Fragment& f : two.whole.fragments) EXPECT_EQ(f.sources[0].layer, 0);  // the nearer layer hides
+}
+
+TEST(FragmentTile, SurfaceWhollyInFrontHidesThePiecesBehindItWithoutClipping) {
+    const testing::Plane w{0.001, -0.002, 0.5};
+    std::vector<ScreenTriangle> tris = squarePieces({0.3, 0.6}, w, 0, 0.5f, 7);
+    const auto closing = squarePieces({0.75, 0.15}, w, 1, 0.5f, 7);
+    tris.insert(tris.end(), closing.begin(), closing.end());
+    // A deep tile's hidden layer: a big triangle of another surface, 1 % farther, inserted first.
+    ScreenTriangle hidden = testing::makeTriangle({-5, -5}, {30, -5}, {-5, 30}, {w.a, w.b, w.c * 0.99}, 5000);
+    hidden.surface = 8;
+    tris.insert(tris.begin(), hidden);
+    const PixelBounds rect = PixelBounds::sized(1, 1, 7, 7);
+    TileScratch scratch;
+    FragmentTile tile;
+    resolveTile(tris, rect, {}, scratch, tile);
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            ASSERT_EQ(tile.pixel(x, y).size(), 1u) << x << "," << y;
+            EXPECT_EQ(tile.pixel(x, y)[0].source_count, 2);
+        }
+    }
+    AuditStats audit;
+    auditTile(tris, tile, audit);
+    EXPECT_EQ(audit.violations, 0) << audit.first_violation;
+
+    // The same triangle 1 % nearer is in front: every pixel shows it alone, as the resolver finds it
+    // (which starts the square at another corner).
+    tris.front() = testing::makeTriangle({-5, -5}, {30, -5}, {-5, 30}, {w.a, w.b, w.c * 1.01}, 5000);
+    tris.front().surface = 8;
+    FragmentTile clipped;
+    resolveTile(tris, rect, {}, scratch, tile);
+    resolveTile(withoutSurfaces(tris), rect, {}, scratch, clipped);
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            ASSERT_EQ(tile.pixel(x, y).size(), 1u);
+            ASSERT_EQ(clipped.pixel(x, y).size(), 1u);
+            const Fragment &f = tile.pixel(x, y)[0], &g = clipped.pixel(x, y)[0];
+            EXPECT_EQ(f.sources, g.sources);
+            EXPECT_EQ(f.source_count, 1);
+            EXPECT_EQ(f.sources[0].source, 5000u);
+            EXPECT_NEAR(f.area, g.area, 1e-15);  // px^2: shoelace rounding of a unit square
+        }
+    }
+
+    // Crossing the surface (nearer at one side of the tile, farther at the other), it is clipped where
+    // it crosses and hides or is hidden elsewhere: the audit's independent union and visibility agree.
+    tris.front() = testing::makeTriangle({-5, -5}, {30, -5}, {-5, 30}, {w.a + 0.004, w.b, w.c - 0.018}, 5000);
+    tris.front().surface = 8;
+    resolveTile(tris, rect, {}, scratch, tile);
+    audit = AuditStats();
+    auditTile(tris, tile, audit);
+    EXPECT_EQ(audit.violations, 0) << audit.first_violation;
+    int front = 0, whole = 0;
+    for (const Fragment& f : tile.fragments) front += f.sources[0].source == 5000u, whole += f.area == 1.0;
+    EXPECT_GT(front, 0);
+    EXPECT_GT(whole, 0);
+}
 
 TEST(FragmentTile, WatertightMeshCoversEveryPixelOnceAndHidesTheMeshBehind) {
     std::mt19937_64 rng(8);
