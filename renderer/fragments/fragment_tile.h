@@ -52,8 +52,9 @@ struct TileScratch {
 // Bins triangles to the tile's pixels by bounding box, then per pixel inserts them front to back (nearest
 // vertex first, ties by triangle index) into a PixelResolver. A pixel that one surface
 // (ScreenTriangle::surface) covers wholly from each layer it comes from, in front of every other piece
-// there, becomes one fragment, the pixel itself, without clipping the pieces against each other. Both frame-0/1 visibility and the subframe
-// re-clip of propagated fragments call this. Deterministic: the result depends only on the inputs.
+// there, becomes one fragment, the pixel itself, without clipping the pieces against each other. Both
+// frame-0/1 visibility and the subframe re-clip of propagated fragments call this. Deterministic: the
+// result depends only on the inputs.
 void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& rect, const ResolverSettings& settings,
                  TileScratch& scratch, FragmentTile& out);
 

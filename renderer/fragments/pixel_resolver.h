@@ -21,6 +21,15 @@ struct ResolverSettings {
     double min_area = 1e-12;
 };
 
+// A triangle's part in one pixel, ready to insert: pixel-local (raster minus the pixel's corner), with
+// its inverse-depth plane in the same coordinates and its area.
+struct PixelPiece {
+    std::uint32_t triangle = 0;  // the caller's index of the ScreenTriangle
+    ConvexPolygon poly;
+    DepthPlane plane;
+    double area = 0.0;
+};
+
 // Per-pixel hidden-surface resolution into non-overlapping convex fragments.
 //
 // Triangles are clipped exactly to the pixel and inserted one by one into a set of disjoint convex pieces.
@@ -32,15 +41,6 @@ struct ResolverSettings {
 // order. Work happens in pixel-local coordinates (raster minus pixel corner, an exact subtraction), so
 // depth planes and areas do not cancel at large raster coordinates. Scratch buffers are members and reused
 // across pixels: after warm-up there is no allocation per polygon.
-// A triangle's part in one pixel, ready to insert: pixel-local (raster minus the pixel's corner), with
-// its inverse-depth plane in the same coordinates and its area.
-struct PixelPiece {
-    std::uint32_t triangle = 0;  // the caller's index of the ScreenTriangle
-    ConvexPolygon poly;
-    DepthPlane plane;
-    double area = 0.0;
-};
-
 class PixelResolver {
 public:
     explicit PixelResolver(ResolverSettings settings = {}) : settings_(settings) {}
