@@ -59,7 +59,7 @@ constexpr double kFrontCandidateArea = 1e-2;
 // Both are affine, so the vertices decide.
 bool coincide(const DepthPlane& p, const DepthPlane& q, std::span<const glm::dvec2> at, double rel) {
     return std::all_of(at.begin(), at.end(), [&](const glm::dvec2& v) {
-        return std::abs(p(v) - q(v)) <= rel * std::max(std::abs(p(v)), std::abs(q(v)));
+        return compareDepth(p(v), q(v), rel) == DepthOrder::Coincident;
     });
 }
 
@@ -67,7 +67,7 @@ bool coincide(const DepthPlane& p, const DepthPlane& q, std::span<const glm::dve
 // polygon: true at its vertices, hence over it (d = p - q is affine and the tolerance convex).
 bool behind(const DepthPlane& p, const DepthPlane& q, std::span<const glm::dvec2> at, double rel) {
     return std::all_of(at.begin(), at.end(), [&](const glm::dvec2& v) {
-        return p(v) - q(v) > rel * std::max(std::abs(p(v)), std::abs(q(v)));
+        return compareDepth(p(v), q(v), rel) == DepthOrder::Nearer;
     });
 }
 

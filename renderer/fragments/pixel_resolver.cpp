@@ -147,10 +147,10 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
         const double wp = plane(overlap.v[k]);
         const double wq = q.plane(overlap.v[k]);
         d[k] = wp - wq;
-        const double tol = settings_.coincident_rel * std::max(std::abs(wp), std::abs(wq));
-        all_close &= std::abs(d[k]) <= tol;
-        any_nearer |= d[k] > tol;
-        any_farther |= d[k] < -tol;
+        const DepthOrder order = compareDepth(wp, wq, settings_.coincident_rel);
+        all_close &= order == DepthOrder::Coincident;
+        any_nearer |= order == DepthOrder::Nearer;
+        any_farther |= order == DepthOrder::Farther;
     }
 
     Piece mine;

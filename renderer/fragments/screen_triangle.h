@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -40,6 +41,17 @@ struct DepthPlane {
 
     double operator()(const glm::dvec2& p) const { return std::fma(a, p.x, std::fma(b, p.y, c)); }
 };
+
+// How inverse depth wp compares with wq: equal when |wp - wq| <= rel * max(|wp|, |wq|) (the resolver's
+// coincidence test), else nearer (wp larger) or farther. The one depth tolerance that every clip and
+// skip of clipping shares, so that they agree on what is in front.
+enum class DepthOrder { Coincident, Nearer, Farther };
+inline DepthOrder compareDepth(double wp, double wq, double rel) {
+    const double d = wp - wq;
+    const double tol = rel * std::max(std::abs(wp), std::abs(wq));
+    if (std::abs(d) <= tol) return DepthOrder::Coincident;
+    return d > 0.0 ? DepthOrder::Nearer : DepthOrder::Farther;
+}
 
 // The inverse-depth plane of t in coordinates relative to origin (raster minus origin), so that evaluating
 // it near the origin does not cancel. Returns false for degenerate (zero-area) triangles.

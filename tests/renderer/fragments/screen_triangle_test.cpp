@@ -70,4 +70,16 @@ TEST(ScreenTriangle, ValidityChecks) {
     EXPECT_FALSE(validScreenTriangle(t));
 }
 
+// The tolerance is relative to the larger inverse depth, so the same relative gap decides at any distance,
+// and the test is antisymmetric: swapping the surfaces swaps nearer and farther.
+TEST(ScreenTriangle, DepthComparisonIsRelativeAndAntisymmetric) {
+    const double rel = 1e-6;
+    for (double w : {1e-4, 1.0, 1e4}) {
+        EXPECT_EQ(compareDepth(w, w * (1.0 + 0.5e-6), rel), DepthOrder::Coincident) << w;
+        EXPECT_EQ(compareDepth(w * (1.0 + 2e-6), w, rel), DepthOrder::Nearer) << w;
+        EXPECT_EQ(compareDepth(w, w * (1.0 + 2e-6), rel), DepthOrder::Farther) << w;
+    }
+    EXPECT_EQ(compareDepth(0.0, 0.0, rel), DepthOrder::Coincident);
+}
+
 }  // namespace clipblur
