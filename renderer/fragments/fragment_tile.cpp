@@ -28,29 +28,71 @@ namespace {
     return std::abs(f.mix(0) + (f.source_count > 1 ? f.mix(1) : 0.0) - 1.0) < 1e-12;
 }
 
-// Triangle ti's part in pixel (x, y), cut from its strip of row y, which is clipped once per row; false
-// where the strip does not reach the pixel's column, or touches it only along its side (the clip would
-// give at most a segment, or a zero-area sliver the resolver drops).
-bool pixelPiece(TileScratch& scratch, std::uint32_t ti, int x, int y, ConvexPolygon& piece) {
-    if (scratch.strip_row[ti] != y) {
-        const ConvexPolygon& strip = scratch.strips[ti].poly;
-        scratch.clippers[ti].clipToStrip(y, y + 1.0, scratch.strips[ti]);
-        scratch.strip_row[ti] = y;
-        glm::dvec2 span(std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
-        if (!strip.degenerate())
-            for (int k = 0; k < strip.n; ++k) span = {std::min(span.x, strip.v[k].x), std::max(span.y, strip.v[k].x)};
-        scratch.strip_x[ti] = span;
+// Binning widens a triangle's row extent by this much (px): the extent's edge crossings are computed
+// apart from the clipper's and may differ from them by rounding (~1e-13 px at raster coordinates of
+// 1e3), so a pixel the clip reaches is never missed; one it only touches yields no piece.
+constexpr double kBinSlack = 1e-9;
+
+// The x extent of triangle v within the row y0 <= y <= y1 (lo > hi where it misses the row): from its
+// vertices in the row and its edges' crossings of the row's lines, where the extremes of a convex
+// polygon's cut lie.
+glm::dvec2 rowExtent(const std::array<glm::dvec2, 3>& v, double y0, double y1) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    glm::dvec2 extent(kInf, -kInf);
+    const auto add = [&](double x) { extent = {std::min(extent.x, x), std::max(extent.y, x)}; };
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec2& p = v[i];
+        const glm::dvec2& q = v[(i + 1) % 3];
+        if (p.y >= y0 && p.y <= y1) add(p.x);
+        for (const double c : {y0, y1})
+            if ((p.y < c && q.y > c) || (p.y > c && q.y < c)) add(p.x + (c - p.y) / (q.y - p.y) * (q.x - p.x));
     }
+    return extent;
+}
+
+// Clips triangle ti to row y once per row, keeping the strip's x extent and the x range over which it
+// holds whole pixel columns: a convex polygon's left boundary x is convex in y and its right one concave,
+// so the columns wholly inside run from the larger of its left ends at y and y + 1 to the smaller of its
+// right ends. Cut vertices lie on the row's lines exactly (TriangleClipper), so comparing y is exact.
+void clipRow(TileScratch& scratch, std::uint32_t ti, int y) {
+    if (scratch.strip_row[ti] == y) return;
+    const ConvexPolygon& strip = scratch.strips[ti].poly;
+    scratch.clippers[ti].clipToStrip(y, y + 1.0, scratch.strips[ti]);
+    scratch.strip_row[ti] = y;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    glm::dvec2 span(kInf, -kInf);
+    std::array<glm::dvec2, 2> ends{glm::dvec2(kInf, -kInf), glm::dvec2(kInf, -kInf)};  // at y, y + 1
+    if (!strip.degenerate()) {
+        for (int k = 0; k < strip.n; ++k) {
+            const glm::dvec2& v = strip.v[k];
+            span = {std::min(span.x, v.x), std::max(span.y, v.x)};
+            if (v.y == y || v.y == y + 1.0) {
+                glm::dvec2& end = ends[v.y == y ? 0 : 1];
+                end = {std::min(end.x, v.x), std::max(end.y, v.x)};
+            }
+        }
+    }
+    scratch.strip_x[ti] = span;
+    scratch.strip_inner[ti] = {std::max(ends[0].x, ends[1].x), std::min(ends[0].y, ends[1].y)};
+}
+
+// Triangle ti's part in pixel (x, y), cut from its strip of row y; false where the strip does not reach
+// the pixel's column, or touches it only along its side (the clip would give at most a segment, or a
+// zero-area sliver the resolver drops).
+bool pixelPiece(TileScratch& scratch, std::uint32_t ti, int x, int y, ConvexPolygon& piece) {
+    clipRow(scratch, ti, y);
     const glm::dvec2& span = scratch.strip_x[ti];
     if (span.y <= x || span.x >= x + 1.0) return false;
     scratch.clippers[ti].clipToColumn(scratch.strips[ti], x, x + 1.0, piece);
     return true;
 }
 
-// Coverage a layer's pieces of one surface may miss and still cover a pixel wholly: the cracks rounding
-// leaves along edges that pieces share (~1e-15 px^2 each), well below the audit's 1e-9 px^2 per pixel; a
-// real hole is larger.
-constexpr double kWholeSlack = 1e-10;
+// Whether triangle ti covers pixel (x, y) wholly (its clip to the pixel would be the pixel itself).
+bool containsPixel(TileScratch& scratch, std::uint32_t ti, int x, int y) {
+    clipRow(scratch, ti, y);
+    return scratch.strip_inner[ti].x <= x && x + 1.0 <= scratch.strip_inner[ti].y;
+}
+
 // Pieces smaller than this (px^2) are not asked which surface is in front: a sliver's plane, carried to
 // the pixel's centre, is ill-conditioned. The choice only decides which surface is tried.
 constexpr double kFrontCandidateArea = 1e-2;
@@ -96,7 +138,7 @@ bool wholePixel(std::span<const ScreenTriangle> triangles, std::span<const Pixel
         if (!largest[layer] || p.area > largest[layer]->area) largest[layer] = &p;
     }
     for (int layer = 0; layer < 2; ++layer)
-        if (largest[layer] && !(std::abs(covered[layer] - 1.0) <= kWholeSlack)) return false;
+        if (largest[layer] && !(std::abs(covered[layer] - 1.0) <= kFullPixelSlack)) return false;
     // Counter-clockwise, as resolved fragments are.
     const std::array<glm::dvec2, 4> corners{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
     const DepthPlane& plane = (largest[0] ? largest[0] : largest[1])->plane;
@@ -114,6 +156,58 @@ bool wholePixel(std::span<const ScreenTriangle> triangles, std::span<const Pixel
         const ScreenTriangle& t = triangles[largest[layer]->triangle];
         out.sources[out.source_count++] = FragmentSource{t.source, t.layer, t.weight};
     }
+    out.area = 1.0;
+    return true;
+}
+
+// wholePixel's answer without clipping, where it is plain: the first triangle (front to back) that contains
+// the pixel is of surface S, so is one from S's other layer wherever that layer has a triangle of S near
+// it, and every triangle of another surface lies behind S at the pixel's corners, hence over the pixel
+// (d - tolerance is concave), or misses the pixel. S's other triangles of the first one's layer cannot
+// overlap it. False sends the pixel to wholePixel and the resolver, which decide every case.
+bool containedPixel(std::span<const ScreenTriangle> triangles, std::span<const TileScratch::Entry> entries, int x, int y,
+                    const ResolverSettings& settings, TileScratch& scratch, Fragment& out) {
+    const std::array<glm::dvec2, 4> corners{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
+    const glm::dvec2 origin(x, y);
+    std::size_t first = 0;
+    while (first < entries.size() && !containsPixel(scratch, entries[first].triangle, x, y)) ++first;
+    if (first == entries.size()) return false;
+    const ScreenTriangle& front = triangles[entries[first].triangle];
+    if (front.surface == ScreenTriangle::kNoSurface) return false;
+    DepthPlane plane;
+    if (!inverseDepthPlane(front, origin, plane)) return false;
+
+    std::array<const ScreenTriangle*, 2> source{nullptr, nullptr};
+    source[front.layer] = &front;
+    bool other_layer_near = false;
+    ConvexPolygon piece;
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+        if (k == first) continue;
+        const std::uint32_t ti = entries[k].triangle;
+        const ScreenTriangle& t = triangles[ti];
+        if (t.surface == front.surface) {
+            if (t.layer == front.layer || source[t.layer]) continue;
+            other_layer_near = true;
+            if (containsPixel(scratch, ti, x, y)) source[t.layer] = &t;
+            continue;
+        }
+        DepthPlane q;
+        if (!inverseDepthPlane(t, origin, q)) return false;
+        if (behind(plane, q, corners, settings.coincident_rel)) continue;
+        if (pixelPiece(scratch, ti, x, y, piece) && !piece.degenerate()) return false;
+    }
+    if (other_layer_near && !source[1 - front.layer]) return false;
+    if (source[0] && source[1]) {
+        DepthPlane other;
+        if (!inverseDepthPlane(*source[1 - front.layer], origin, other) ||
+            !coincide(plane, other, corners, settings.coincident_rel))
+            return false;
+    }
+    out = Fragment();
+    out.vertex_count = 4;
+    for (int k = 0; k < 4; ++k) out.vertices[k] = origin + corners[k];
+    for (const ScreenTriangle* t : source)
+        if (t) out.sources[out.source_count++] = FragmentSource{t->source, t->layer, t->weight};
     out.area = 1.0;
     return true;
 }
@@ -150,12 +244,14 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         if (!(hix >= rect.x0 && lox <= rect.x1 && hiy >= rect.y0 && loy <= rect.y1)) {
             continue;
         }
-        const int x_begin = std::max(rect.x0, int(std::floor(std::max(lox, double(rect.x0)))));
-        const int x_end = std::min(rect.x1 - 1, int(std::floor(std::min(hix, double(rect.x1)))));
         const int y_begin = std::max(rect.y0, int(std::floor(std::max(loy, double(rect.y0)))));
         const int y_end = std::min(rect.y1 - 1, int(std::floor(std::min(hiy, double(rect.y1)))));
         const double nearest = std::max({t.inv_depth[0], t.inv_depth[1], t.inv_depth[2]});
         for (int y = y_begin; y <= y_end; ++y) {
+            const glm::dvec2 row = rowExtent(t.raster, y, y + 1.0);
+            if (row.x > row.y) continue;
+            const int x_begin = std::max(rect.x0, int(std::floor(std::max(row.x - kBinSlack, double(rect.x0)))));
+            const int x_end = std::min(rect.x1 - 1, int(std::floor(std::min(row.y + kBinSlack, double(rect.x1)))));
             for (int x = x_begin; x <= x_end; ++x) {
                 const auto pixel = std::uint32_t(rect.index(x, y));
                 scratch.entries.push_back({pixel, std::uint32_t(ti), nearest});
@@ -179,6 +275,7 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
     scratch.strips.resize(triangles.size());
     scratch.strip_row.assign(triangles.size(), std::numeric_limits<int>::min());
     scratch.strip_x.resize(triangles.size());
+    scratch.strip_inner.resize(triangles.size());
     ConvexPolygon piece;
     PixelResolver& resolver = scratch.resolver;
     resolver.setSettings(settings);
@@ -198,13 +295,20 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
             for (auto it = begin; it != end; ++it)
                 if (pixelPiece(scratch, it->triangle, x, y, piece)) resolver.insertClipped(triangles[it->triangle], piece);
         } else {
+            Fragment whole;
+            const std::span<const TileScratch::Entry> entries(&*begin, std::size_t(end - begin));
+            if (containedPixel(triangles, entries, x, y, settings, scratch, whole)) {
+                out.fragments.push_back(whole);
+                CLIPBLUR_DCHECK(wellFormed(whole, x, y));
+                out.covered_area[i] = 1.0;
+                continue;
+            }
             scratch.pixel_pieces.clear();
             PixelPiece prepared;
             for (auto it = begin; it != end; ++it)
                 if (pixelPiece(scratch, it->triangle, x, y, piece) &&
                     resolver.prepare(triangles[it->triangle], it->triangle, piece, prepared))
                     scratch.pixel_pieces.push_back(prepared);
-            Fragment whole;
             if (wholePixel(triangles, scratch.pixel_pieces, glm::dvec2(x, y), settings, whole)) {
                 out.fragments.push_back(whole);
                 CLIPBLUR_DCHECK(wellFormed(whole, x, y));

@@ -100,8 +100,22 @@ void PixelResolver::queueWork(const ConvexPolygon& poly, std::size_t start, doub
     for (const ConvexPolygon& c : capped_) work_.push_back(Work{c, start});
 }
 
+bool PixelResolver::hiddenInFullPixel(const ConvexPolygon& local, const DepthPlane& plane) const {
+    // d = 1/z_Q - 1/z_P is affine and the tolerance convex, so Q nearer at P's vertices is Q nearer over P.
+    CompensatedSum covered;
+    for (const Piece& q : pieces_) {
+        if (q.dead) continue;
+        for (int k = 0; k < local.n; ++k)
+            if (compareDepth(q.plane(local.v[k]), plane(local.v[k]), settings_.coincident_rel) != DepthOrder::Nearer)
+                return false;
+        covered.add(q.area);
+    }
+    return covered.value() >= 1.0 - kFullPixelSlack;
+}
+
 void PixelResolver::insertPolygon(const ConvexPolygon& local, double area, const DepthPlane& plane,
                                   const FragmentSource& src) {
+    if (hiddenInFullPixel(local, plane)) return;
     ++epoch_;
     work_.clear();
     queueWork(local, 0, area);

@@ -12,15 +12,15 @@ namespace clipblur {
 
 namespace {
 
-// A watertight mesh over [0, 8]^2: a 6x6 vertex grid with jittered interior vertices, two triangles per
-// cell, all on the plane w.
-std::vector<ScreenTriangle> jitteredMesh(std::mt19937_64& rng, const testing::Plane& w, std::uint32_t first) {
-    const int n = 6;
-    std::uniform_real_distribution<double> jitter(-0.5, 0.5);
+// A watertight mesh over [lo, hi]^2 (default [0, 8]^2): an n x n vertex grid with interior vertices
+// jittered by up to `amplitude` px, two triangles per cell, all on the plane w.
+std::vector<ScreenTriangle> jitteredMesh(std::mt19937_64& rng, const testing::Plane& w, std::uint32_t first,
+                                         double lo = 0.0, double hi = 8.0, int n = 6, double amplitude = 0.5) {
+    std::uniform_real_distribution<double> jitter(-amplitude, amplitude);
     std::vector<glm::dvec2> v;
     for (int j = 0; j < n; ++j) {
         for (int i = 0; i < n; ++i) {
-            glm::dvec2 p(8.0 * i / (n - 1), 8.0 * j / (n - 1));
+            glm::dvec2 p(lo + (hi - lo) * i / (n - 1), lo + (hi - lo) * j / (n - 1));
             if (i > 0 && i < n - 1) p.x += jitter(rng);
             if (j > 0 && j < n - 1) p.y += jitter(rng);
             v.push_back(p);
@@ -203,6 +203,66 @@ TEST(FragmentTile, SurfaceWhollyInFrontHidesThePiecesBehindItWithoutClipping) {
     for (const Fragment& f : tile.fragments) front += f.sources[0].source == 5000u, whole += f.area == 1.0;
     EXPECT_GT(front, 0);
     EXPECT_GT(whole, 0);
+}
+
+// Pixels inside one triangle of a surface from each layer are made whole without clipping anything
+// (containedPixel); the rest go to the resolver. Either way each pixel shows what clipping every piece
+// against every other shows: the same area per source. Seeded meshes of 6 px cells, each triangle its own
+// surface, the closing layer the same mesh moved within its plane, under an occluder 1 % nearer over part
+// of the tile and a plane that cuts through the mesh.
+TEST(FragmentTile, PixelsInsideOneTriangleOfEachLayerMatchClippingEverything) {
+    const testing::Plane w{0.001, -0.002, 0.5};
+    for (std::uint64_t seed : {3u, 4u, 5u}) {
+        std::mt19937_64 rng(seed);
+        std::vector<ScreenTriangle> tris = jitteredMesh(rng, w, 0, -4.0, 20.0, 5, 1.5);
+        const std::size_t n = tris.size();
+        const glm::dvec2 moved(0.37, -0.21);
+        for (std::size_t k = 0; k < n; ++k) {
+            tris[k].surface = k;
+            ScreenTriangle t = tris[k];
+            for (glm::dvec2& p : t.raster) p += moved;
+            for (int i = 0; i < 3; ++i) t.inv_depth[i] = w(t.raster[i]);
+            t.source = std::uint32_t(1000 + k);
+            t.layer = 1;
+            t.weight = 0.25f;
+            tris.push_back(t);
+        }
+        ScreenTriangle occluder = testing::makeTriangle({2.5, 1.5}, {14.5, 3.5}, {5.5, 9.5}, {w.a, w.b, w.c * 1.01}, 5000);
+        occluder.surface = 5000;
+        ScreenTriangle cutting = testing::makeTriangle({9, 9}, {17, 10}, {11, 17}, {w.a + 0.004, w.b, w.c - 0.05}, 6000);
+        cutting.surface = 6000;
+        tris.push_back(occluder);
+        tris.push_back(cutting);
+
+        const PixelBounds rect = PixelBounds::sized(0, 0, 16, 16);
+        auto [whole, clipped] = resolveBothWays(tris, rect);
+        int whole_pixels = 0;
+        int one_surface = 0;  // pixels the clipped tile gives wholly to one surface (k and 1000 + k, or another)
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            for (int x = rect.x0; x < rect.x1; ++x) {
+                const auto pixel = whole.pixel(x, y);
+                whole_pixels += pixel.size() == 1 && pixel[0].area == 1.0;
+                const auto a = testing::areaBySource({pixel.begin(), pixel.end()});
+                const auto c = testing::areaBySource({clipped.pixel(x, y).begin(), clipped.pixel(x, y).end()});
+                const auto surfaceOf = [](std::uint32_t source) { return source < 2000 ? source % 1000 : source; };
+                one_surface += !c.empty() && std::all_of(c.begin(), c.end(), [&](const auto& sa) {
+                    return surfaceOf(sa.first) == surfaceOf(c.begin()->first) && std::abs(sa.second - 1.0) < 1e-12;
+                });
+                ASSERT_EQ(a.size(), c.size()) << seed << ": " << x << "," << y;
+                for (const auto& [source, area] : c) {
+                    ASSERT_TRUE(a.count(source)) << seed << ": " << x << "," << y << " source " << source;
+                    // px^2: clipped pieces of a pixel sum to its area to rounding of O(10) coordinates.
+                    EXPECT_NEAR(a.at(source), area, 1e-12) << seed << ": " << x << "," << y;
+                }
+            }
+        }
+        // Every pixel one surface covers in front is one fragment, and there are such pixels.
+        EXPECT_EQ(whole_pixels, one_surface) << seed;
+        EXPECT_GT(one_surface, 0) << seed;
+        AuditStats audit;
+        auditTile(tris, whole, audit);
+        EXPECT_EQ(audit.violations, 0) << seed << ": " << audit.first_violation;
+    }
 }
 
 TEST(FragmentTile, WatertightMeshCoversEveryPixelOnceAndHidesTheMeshBehind) {

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <numeric>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -276,6 +277,51 @@ TEST(PixelResolver, RandomScenesMatchInclusionExclusionOracleInAnyOrder) {
             ASSERT_NEAR(r.coveredArea(), union_area, 1e-9) << "scene " << scene;
             std::shuffle(order.begin(), order.end(), rng);
         }
+    }
+}
+
+// Once a pixel is full, a polygon behind every piece is dropped without clipping (hiddenInFullPixel). What
+// it must not drop: one that shows through a pinhole of 1e-7 px^2 (above the 1e-10 slack), or one that
+// comes in front of a piece anywhere, here across a slanted line or at one corner only. Each area is held
+// against the inclusion-exclusion oracle, in every insertion order.
+TEST(PixelResolver, FullPixelHidesWhatIsBehindItButNotThroughAHoleOrACrossing) {
+    const glm::dvec2 pixel(7, 3);
+    const double gap = 1e-7;
+    struct Case {
+        const char* name;
+        bool hole;
+        Plane last;
+    };
+    for (const Case& c : {Case{"behind", false, {0.0, 0.0, 0.5}}, Case{"pinhole", true, {0.0, 0.0, 0.5}},
+                          Case{"crossing", false, {0.1, 0.1, -0.105}}, Case{"corner", false, {-0.06, 0.05, 1.23}}}) {
+        // The front surface (1/z = 1 - 0.01 x) in two halves, split at x = 7.5 with a sliver of a gap when
+        // `hole`: the gap is 1e-7 px wide and 1 px tall inside the pixel.
+        const Plane front{-0.01, 0.0, 1.0 + 0.01 * 7};
+        std::vector<ScreenTriangle> tris = testing::makeQuad(6.5, 2.5, 7.5, 4.5, front, 0);
+        for (const auto& t : testing::makeQuad(7.5 + (c.hole ? gap : 0.0), 2.5, 8.5, 4.5, front, 2)) tris.push_back(t);
+        tris.push_back(testing::makeTriangle({5, 1}, {11, 1}, {7, 7}, c.last, 4));
+        // The last surface against the front's 1.07 - 0.01x (positive 1/z at all its vertices): behind
+        // everywhere, or in front past a line through the pixel's centre (crossing), or near the corner
+        // (7, 4) alone (corner: 0.05 ((y - 3.8) - (x - 7)) above the front, a 0.02 px^2 triangle).
+        std::vector<double> expected(tris.size());
+        for (std::size_t k = 0; k < tris.size(); ++k) expected[k] = visibleAreaOracle(tris, k, pixel);
+        if (c.hole) EXPECT_NEAR(expected[4], gap, 1e-12);
+        if (std::string(c.name) == "behind") EXPECT_EQ(expected[4], 0.0);
+        if (std::string(c.name) == "corner") EXPECT_NEAR(expected[4], 0.02, 1e-12);
+        if (std::string(c.name) == "crossing") EXPECT_GT(expected[4], 0.1);
+
+        std::vector<std::size_t> order(tris.size());
+        std::iota(order.begin(), order.end(), 0);
+        PixelResolver r;
+        do {
+            std::vector<ScreenTriangle> ordered;
+            for (std::size_t k : order) ordered.push_back(tris[k]);
+            const auto frags = resolvePixel(int(pixel.x), int(pixel.y), ordered, r);
+            checkInvariants(int(pixel.x), int(pixel.y), frags);
+            auto by = testing::areaBySource(frags);
+            // Areas of O(1) pixel-local coordinates (~1e-15 each); the oracle's crossings set the 1e-12.
+            for (std::size_t k = 0; k < tris.size(); ++k) ASSERT_NEAR(by[std::uint32_t(k)], expected[k], 1e-12) << c.name << " " << k;
+        } while (std::next_permutation(order.begin(), order.end()));
     }
 }
 
