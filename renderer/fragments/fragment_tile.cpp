@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "renderer/check.h"
 #include "renderer/geometry/predicates.h"
@@ -93,10 +94,6 @@ bool containsPixel(TileScratch& scratch, std::uint32_t ti, int x, int y) {
     return scratch.strip_inner[ti].x <= x && x + 1.0 <= scratch.strip_inner[ti].y;
 }
 
-// Pieces smaller than this (px^2) are not asked which surface is in front: a sliver's plane, carried to
-// the pixel's centre, is ill-conditioned. The choice only decides which surface is tried.
-constexpr double kFrontCandidateArea = 1e-2;
-
 // Whether the planes p and q coincide (the resolver's test) at every point of the pixel-local polygon.
 // Both are affine, so the vertices decide.
 bool coincide(const DepthPlane& p, const DepthPlane& q, std::span<const glm::dvec2> at, double rel) {
@@ -113,103 +110,112 @@ bool behind(const DepthPlane& p, const DepthPlane& q, std::span<const glm::dvec2
     });
 }
 
-// Pixel (x, y) as one fragment, the pixel itself, when one surface S (ScreenTriangle::surface) is in front
-// over all of it: S's pieces cover it wholly from each layer they come from (a layer's pieces of one
-// surface do not overlap), S's planes from both layers coincide, and every other piece lies behind S. What
-// the resolver would give, to rounding, without clipping the pieces against each other. S is tried as the
-// surface nearest at the pixel's centre; each layer's source is its largest piece of S, whose triangle is
-// best conditioned for evaluating the surface across the pixel. Pieces are pixel-local.
-bool wholePixel(std::span<const ScreenTriangle> triangles, std::span<const PixelPiece> pieces, const glm::dvec2& pixel,
-                const ResolverSettings& settings, Fragment& out) {
-    const glm::dvec2 centre(0.5, 0.5);
-    const PixelPiece* front = nullptr;
-    for (const PixelPiece& p : pieces)
-        if (p.area >= kFrontCandidateArea && (!front || p.plane(centre) > front->plane(centre))) front = &p;
-    if (!front) return false;
-    const std::uint64_t surface = triangles[front->triangle].surface;
-    if (surface == ScreenTriangle::kNoSurface) return false;
-
-    std::array<double, 2> covered{0.0, 0.0};
-    std::array<const PixelPiece*, 2> largest{nullptr, nullptr};
-    for (const PixelPiece& p : pieces) {
-        if (triangles[p.triangle].surface != surface) continue;
-        const int layer = triangles[p.triangle].layer;
-        covered[layer] += p.area;
-        if (!largest[layer] || p.area > largest[layer]->area) largest[layer] = &p;
-    }
-    for (int layer = 0; layer < 2; ++layer)
-        if (largest[layer] && !(std::abs(covered[layer] - 1.0) <= kFullPixelSlack)) return false;
-    // Counter-clockwise, as resolved fragments are.
-    const std::array<glm::dvec2, 4> corners{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
-    const DepthPlane& plane = (largest[0] ? largest[0] : largest[1])->plane;
-    if (largest[0] && largest[1] && !coincide(plane, largest[1]->plane, corners, settings.coincident_rel)) return false;
-    for (const PixelPiece& p : pieces) {
-        if (triangles[p.triangle].surface == surface) continue;
-        if (!behind(plane, p.plane, std::span(p.poly.v.data(), std::size_t(p.poly.n)), settings.coincident_rel))
-            return false;
-    }
-    out = Fragment();
-    out.vertex_count = 4;
-    for (int k = 0; k < 4; ++k) out.vertices[k] = pixel + corners[k];
-    for (int layer = 0; layer < 2; ++layer) {
-        if (!largest[layer]) continue;
-        const ScreenTriangle& t = triangles[largest[layer]->triangle];
-        out.sources[out.source_count++] = FragmentSource{t.source, t.layer, t.weight};
-    }
-    out.area = 1.0;
-    return true;
+// Triangle ti's inverse-depth plane relative to pixel (x, y): inverseDepthPlane's, from slopes found once.
+bool planeAt(std::span<const ScreenTriangle> triangles, const TileScratch& scratch, std::uint32_t ti, int x, int y,
+             DepthPlane& plane) {
+    return anchorPlane(triangles[ti], scratch.slopes[ti], glm::dvec2(x, y), plane);
 }
 
-// wholePixel's answer without clipping, where it is plain: the first triangle (front to back) that contains
-// the pixel is of surface S, so is one from S's other layer wherever that layer has a triangle of S near
-// it, and every triangle of another surface lies behind S at the pixel's corners, hence over the pixel
-// (d - tolerance is concave), or misses the pixel. S's other triangles of the first one's layer cannot
-// overlap it. False sends the pixel to wholePixel and the resolver, which decide every case.
-bool containedPixel(std::span<const ScreenTriangle> triangles, std::span<const TileScratch::Entry> entries, int x, int y,
-                    const ResolverSettings& settings, TileScratch& scratch, Fragment& out) {
-    const std::array<glm::dvec2, 4> corners{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
-    const glm::dvec2 origin(x, y);
-    std::size_t first = 0;
-    while (first < entries.size() && !containsPixel(scratch, entries[first].triangle, x, y)) ++first;
-    if (first == entries.size()) return false;
-    const ScreenTriangle& front = triangles[entries[first].triangle];
-    if (front.surface == ScreenTriangle::kNoSurface) return false;
-    DepthPlane plane;
-    if (!inverseDepthPlane(front, origin, plane)) return false;
+// Triangle ti's area in pixel (x, y), measured pixel-local as the resolver measures it; 0 for a sliver it
+// would drop. `piece` gets the pixel-local part (empty when the triangle contains the pixel or misses it).
+double pixelArea(TileScratch& scratch, std::uint32_t ti, int x, int y, const ResolverSettings& settings,
+                 ConvexPolygon& piece) {
+    piece.clear();
+    if (containsPixel(scratch, ti, x, y)) return 1.0;
+    if (!pixelPiece(scratch, ti, x, y, piece) || piece.degenerate()) return 0.0;
+    for (int k = 0; k < piece.n; ++k) piece.v[k] -= glm::dvec2(x, y);  // exact
+    const double area = piece.area();
+    return area > settings.min_area ? area : 0.0;
+}
 
-    std::array<const ScreenTriangle*, 2> source{nullptr, nullptr};
-    source[front.layer] = &front;
-    bool other_layer_near = false;
+// One surface tried for a whole pixel: the pixel if S covers it, else which triangle of another surface
+// is not behind S there (none when S does not cover the pixel).
+struct WholeTry {
+    bool whole = false;
+    std::optional<std::uint32_t> in_front;
+};
+
+// Pixel (x, y) as one fragment, the pixel itself, when surface S (ScreenTriangle::surface) is in front over
+// all of it: S's triangles cover it wholly from each layer they reach it from (a layer's triangles of
+// one surface do not overlap, so their areas there add up), S's planes from both layers coincide, and
+// every other triangle lies behind S at the pixel's corners, or else at the vertices of its part in the
+// pixel, or misses it (d - tolerance is concave, so the vertices decide). What the resolver would give,
+// to rounding, without clipping pieces against each other; only triangles that neither contain the pixel
+// nor lie behind S are clipped. Each layer's source is its largest part of S, whose triangle is best
+// conditioned for evaluating the surface across the pixel. `plane` is S's, relative to the pixel.
+WholeTry trySurface(std::span<const ScreenTriangle> triangles, std::span<const TileScratch::Entry> entries, int x, int y,
+                    std::uint64_t surface, const DepthPlane& plane, const ResolverSettings& settings,
+                    TileScratch& scratch, Fragment& out) {
+    // Counter-clockwise, as resolved fragments are.
+    const std::array<glm::dvec2, 4> corners{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
+    std::array<double, 2> covered{0.0, 0.0};
+    std::array<double, 2> largest_area{0.0, 0.0};
+    std::array<std::uint32_t, 2> largest{0, 0};
     ConvexPolygon piece;
-    for (std::size_t k = 0; k < entries.size(); ++k) {
-        if (k == first) continue;
-        const std::uint32_t ti = entries[k].triangle;
-        const ScreenTriangle& t = triangles[ti];
-        if (t.surface == front.surface) {
-            if (t.layer == front.layer || source[t.layer]) continue;
-            other_layer_near = true;
-            if (containsPixel(scratch, ti, x, y)) source[t.layer] = &t;
+    for (const TileScratch::Entry& e : entries) {
+        const ScreenTriangle& t = triangles[e.triangle];
+        if (t.surface == surface) {
+            const double area = pixelArea(scratch, e.triangle, x, y, settings, piece);
+            covered[t.layer] += area;
+            if (area > largest_area[t.layer]) largest_area[t.layer] = area, largest[t.layer] = e.triangle;
             continue;
         }
         DepthPlane q;
-        if (!inverseDepthPlane(t, origin, q)) return false;
+        if (!planeAt(triangles, scratch, e.triangle, x, y, q)) return {};
         if (behind(plane, q, corners, settings.coincident_rel)) continue;
-        if (pixelPiece(scratch, ti, x, y, piece) && !piece.degenerate()) return false;
+        if (pixelArea(scratch, e.triangle, x, y, settings, piece) == 0.0) continue;
+        const std::span<const glm::dvec2> at =
+            piece.n > 0 ? std::span<const glm::dvec2>(piece.v.data(), std::size_t(piece.n)) : std::span(corners);
+        if (!behind(plane, q, at, settings.coincident_rel)) return {false, e.triangle};
     }
-    if (other_layer_near && !source[1 - front.layer]) return false;
-    if (source[0] && source[1]) {
-        DepthPlane other;
-        if (!inverseDepthPlane(*source[1 - front.layer], origin, other) ||
-            !coincide(plane, other, corners, settings.coincident_rel))
-            return false;
+    for (int layer = 0; layer < 2; ++layer)
+        if (largest_area[layer] > 0.0 && !(std::abs(covered[layer] - 1.0) <= kFullPixelSlack)) return {};
+    if (largest_area[0] == 0.0 && largest_area[1] == 0.0) return {};
+    if (largest_area[0] > 0.0 && largest_area[1] > 0.0) {
+        DepthPlane p0, p1;
+        if (!planeAt(triangles, scratch, largest[0], x, y, p0) || !planeAt(triangles, scratch, largest[1], x, y, p1) ||
+            !coincide(p0, p1, corners, settings.coincident_rel))
+            return {};
     }
     out = Fragment();
     out.vertex_count = 4;
-    for (int k = 0; k < 4; ++k) out.vertices[k] = origin + corners[k];
-    for (const ScreenTriangle* t : source)
-        if (t) out.sources[out.source_count++] = FragmentSource{t->source, t->layer, t->weight};
+    for (int k = 0; k < 4; ++k) out.vertices[k] = glm::dvec2(x, y) + corners[k];
+    for (int layer = 0; layer < 2; ++layer) {
+        if (largest_area[layer] == 0.0) continue;
+        const ScreenTriangle& t = triangles[largest[layer]];
+        out.sources[out.source_count++] = FragmentSource{t.source, t.layer, t.weight};
+    }
     out.area = 1.0;
-    return true;
+    return {true, std::nullopt};
+}
+
+// Tries the surface of the first triangle (front to back) that contains the pixel, else of the first that
+// reaches it, then in turn the surface of a triangle found in front of the one tried, up to three.
+bool wholePixel(std::span<const ScreenTriangle> triangles, std::span<const TileScratch::Entry> entries, int x, int y,
+                const ResolverSettings& settings, TileScratch& scratch, Fragment& out) {
+    constexpr int kTries = 3;
+    std::optional<std::uint32_t> candidate;
+    for (const TileScratch::Entry& e : entries)
+        if (containsPixel(scratch, e.triangle, x, y)) {
+            candidate = e.triangle;
+            break;
+        }
+    ConvexPolygon piece;
+    for (auto e = entries.begin(); !candidate && e != entries.end(); ++e)
+        if (pixelArea(scratch, e->triangle, x, y, settings, piece) > 0.0) candidate = e->triangle;
+    std::array<std::uint64_t, kTries> tried{};
+    for (int k = 0; k < kTries && candidate; ++k) {
+        const std::uint64_t surface = triangles[*candidate].surface;
+        if (surface == ScreenTriangle::kNoSurface || std::find(tried.begin(), tried.begin() + k, surface) != tried.begin() + k)
+            return false;
+        tried[std::size_t(k)] = surface;
+        DepthPlane plane;
+        if (!planeAt(triangles, scratch, *candidate, x, y, plane)) return false;
+        const WholeTry result = trySurface(triangles, entries, x, y, surface, plane, settings, scratch, out);
+        if (result.whole) return true;
+        candidate = result.in_front;
+    }
+    return false;
 }
 
 }  // namespace
@@ -227,10 +233,11 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
 
     scratch.entries.clear();
     scratch.clippers.clear();
+    scratch.slopes.resize(triangles.size());
     for (std::size_t ti = 0; ti < triangles.size(); ++ti) {
         const ScreenTriangle& t = triangles[ti];
         scratch.clippers.emplace_back(t.raster);
-        if (!validScreenTriangle(t) || !scratch.clippers.back().valid()) {
+        if (!validScreenTriangle(t) || !scratch.clippers.back().valid() || !inverseDepthSlopes(t, scratch.slopes[ti])) {
             ++out.rejected_triangles;
             continue;
         }
@@ -291,33 +298,19 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         const int y = rect.y0 + int(i / rect.width());
         const std::size_t first = out.fragments.size();
         resolver.reset(x, y);
-        if (triangles[begin->triangle].surface == ScreenTriangle::kNoSurface) {
-            for (auto it = begin; it != end; ++it)
-                if (pixelPiece(scratch, it->triangle, x, y, piece)) resolver.insertClipped(triangles[it->triangle], piece);
-        } else {
-            Fragment whole;
-            const std::span<const TileScratch::Entry> entries(&*begin, std::size_t(end - begin));
-            if (containedPixel(triangles, entries, x, y, settings, scratch, whole)) {
-                out.fragments.push_back(whole);
-                CLIPBLUR_DCHECK(wellFormed(whole, x, y));
-                out.covered_area[i] = 1.0;
-                continue;
-            }
-            scratch.pixel_pieces.clear();
-            PixelPiece prepared;
-            for (auto it = begin; it != end; ++it)
-                if (pixelPiece(scratch, it->triangle, x, y, piece) &&
-                    resolver.prepare(triangles[it->triangle], it->triangle, piece, prepared))
-                    scratch.pixel_pieces.push_back(prepared);
-            if (wholePixel(triangles, scratch.pixel_pieces, glm::dvec2(x, y), settings, whole)) {
-                out.fragments.push_back(whole);
-                CLIPBLUR_DCHECK(wellFormed(whole, x, y));
-                out.covered_area[i] = 1.0;
-                out.dropped_area += resolver.droppedArea();
-                continue;
-            }
-            for (const PixelPiece& p : scratch.pixel_pieces) resolver.insertPrepared(triangles[p.triangle], p);
+        const std::span<const TileScratch::Entry> entries(&*begin, std::size_t(end - begin));
+        Fragment whole;
+        if (triangles[begin->triangle].surface != ScreenTriangle::kNoSurface &&
+            wholePixel(triangles, entries, x, y, settings, scratch, whole)) {
+            out.fragments.push_back(whole);
+            CLIPBLUR_DCHECK(wellFormed(whole, x, y));
+            out.covered_area[i] = 1.0;
+            continue;
         }
+        DepthPlane plane;
+        for (const TileScratch::Entry& e : entries)
+            if (pixelPiece(scratch, e.triangle, x, y, piece) && planeAt(triangles, scratch, e.triangle, x, y, plane))
+                resolver.insertClipped(triangles[e.triangle], piece, plane);
         resolver.appendFragments(out.fragments);
         for (std::size_t f = first; f < out.fragments.size(); ++f) CLIPBLUR_DCHECK(wellFormed(out.fragments[f], x, y));
         out.covered_area[i] = resolver.coveredArea();

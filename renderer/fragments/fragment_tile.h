@@ -46,7 +46,7 @@ struct TileScratch {
     std::vector<int> strip_row;
     std::vector<glm::dvec2> strip_x;  // lowest and highest x of the strip; lo > hi when it is empty
     std::vector<glm::dvec2> strip_inner;  // x range of the whole pixel columns inside the strip; lo > hi: none
-    std::vector<PixelPiece> pixel_pieces;  // one pixel's, where its triangles know their surfaces
+    std::vector<DepthPlane> slopes;  // per triangle: its inverse-depth plane's slopes (inverseDepthSlopes)
     PixelResolver resolver;
 };
 

@@ -48,45 +48,27 @@ bool PixelResolver::dropIfSliver(const ConvexPolygon& poly, double& area) {
 void PixelResolver::insert(const ScreenTriangle& t) {
     if (t.layer > 1) throw std::invalid_argument("ScreenTriangle::layer must be 0 or 1");
     fragments_valid_ = false;
-    if (!validScreenTriangle(t)) {
-        ++rejected_;
-        return;
-    }
+    DepthPlane plane;
     const TriangleClipper clipper(t.raster);
-    if (!clipper.valid()) {
+    if (!validScreenTriangle(t) || !clipper.valid() || !inverseDepthPlane(t, glm::dvec2(px_, py_), plane)) {
         ++rejected_;
         return;
     }
     ConvexPolygon piece;
     clipper.clipToPixel(px_, py_, piece);
-    insertClipped(t, piece);
+    insertClipped(t, piece, plane);
 }
 
-void PixelResolver::insertClipped(const ScreenTriangle& t, const ConvexPolygon& clipped) {
-    PixelPiece piece;
-    if (prepare(t, 0, clipped, piece)) insertPrepared(t, piece);
-}
-
-bool PixelResolver::prepare(const ScreenTriangle& t, std::uint32_t triangle, const ConvexPolygon& clipped,
-                            PixelPiece& out) {
+void PixelResolver::insertClipped(const ScreenTriangle& t, const ConvexPolygon& clipped, const DepthPlane& plane) {
     if (t.layer > 1) throw std::invalid_argument("ScreenTriangle::layer must be 0 or 1");
     fragments_valid_ = false;
-    if (clipped.degenerate()) return false;  // most pixels of a triangle's box outside it: no plane needed
-    const glm::dvec2 origin(px_, py_);
-    if (!inverseDepthPlane(t, origin, out.plane)) {
-        ++rejected_;
-        return false;
-    }
-    out.triangle = triangle;
-    out.poly = clipped;
+    if (clipped.degenerate()) return;  // most pixels of a triangle's box outside it
+    ConvexPolygon local = clipped;
     // Exact: every vertex lies in [px, px+1] x [py, py+1].
-    for (int i = 0; i < out.poly.n; ++i) out.poly.v[i] -= origin;
-    return !dropIfSliver(out.poly, out.area);
-}
-
-void PixelResolver::insertPrepared(const ScreenTriangle& t, const PixelPiece& piece) {
-    fragments_valid_ = false;
-    insertPolygon(piece.poly, piece.area, piece.plane, FragmentSource{t.source, t.layer, t.weight});
+    for (int i = 0; i < local.n; ++i) local.v[i] -= glm::dvec2(px_, py_);
+    double area = 0.0;
+    if (dropIfSliver(local, area)) return;
+    insertPolygon(local, area, plane, FragmentSource{t.source, t.layer, t.weight});
 }
 
 void PixelResolver::queueWork(const ConvexPolygon& poly, std::size_t start, double area) {

@@ -25,15 +25,6 @@ struct ResolverSettings {
 // share (~1e-15 px^2 each), well below the audit's 1e-9 px^2 per pixel; a real hole is larger.
 inline constexpr double kFullPixelSlack = 1e-10;
 
-// A triangle's part in one pixel, ready to insert: pixel-local (raster minus the pixel's corner), with
-// its inverse-depth plane in the same coordinates and its area.
-struct PixelPiece {
-    std::uint32_t triangle = 0;  // the caller's index of the ScreenTriangle
-    ConvexPolygon poly;
-    DepthPlane plane;
-    double area = 0.0;
-};
-
 // Per-pixel hidden-surface resolution into non-overlapping convex fragments.
 //
 // Triangles are clipped exactly to the pixel and inserted one by one into a set of disjoint convex pieces.
@@ -54,13 +45,9 @@ public:
     // Ignores (and counts) triangles failing validScreenTriangle. Throws std::invalid_argument for layer > 1.
     void insert(const ScreenTriangle& t);
     // insert for a triangle already validated and clipped to this pixel by its TriangleClipper (`piece`,
-    // raster space): what resolveTile does, which clips each triangle's row strip once per row.
-    void insertClipped(const ScreenTriangle& t, const ConvexPolygon& piece);
-    // insertClipped in two steps, for a caller that looks at the pieces first: prepare makes the piece
-    // pixel-local with its plane and area, false when there is nothing to insert (no area, no plane: counted
-    // as rejected, or a sliver: added to droppedArea); insertPrepared inserts it.
-    bool prepare(const ScreenTriangle& t, std::uint32_t triangle, const ConvexPolygon& piece, PixelPiece& out);
-    void insertPrepared(const ScreenTriangle& t, const PixelPiece& piece);
+    // raster space), with its inverse-depth plane relative to the pixel's corner: what resolveTile does,
+    // which clips each triangle's row strip once per row and finds its plane's slopes once.
+    void insertClipped(const ScreenTriangle& t, const ConvexPolygon& piece, const DepthPlane& plane);
 
     // The fragments in raster space; the order is a pure function of the insertion sequence.
     const std::vector<Fragment>& fragments();

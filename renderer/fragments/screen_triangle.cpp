@@ -15,8 +15,7 @@ bool validScreenTriangle(const ScreenTriangle& t) {
     return a2 != 0.0 && std::isfinite(a2);
 }
 
-bool inverseDepthPlane(const ScreenTriangle& t, const glm::dvec2& origin, DepthPlane& plane) {
-    const glm::dvec2 q0 = t.raster[0] - origin;
+bool inverseDepthSlopes(const ScreenTriangle& t, DepthPlane& slopes) {
     const glm::dvec2 d1 = t.raster[1] - t.raster[0];
     const glm::dvec2 d2 = t.raster[2] - t.raster[0];
     const double a2 = differenceOfProducts(d1.x, d2.y, d1.y, d2.x);
@@ -25,10 +24,23 @@ bool inverseDepthPlane(const ScreenTriangle& t, const glm::dvec2& origin, DepthP
     const double dw1 = t.inv_depth[1] - w0;
     const double dw2 = t.inv_depth[2] - w0;
     // Cramer's rule for a*d_i.x + b*d_i.y = dw_i, i = 1, 2.
-    plane.a = differenceOfProducts(dw1, d2.y, dw2, d1.y) / a2;
-    plane.b = differenceOfProducts(dw2, d1.x, dw1, d2.x) / a2;
-    plane.c = w0 - std::fma(plane.a, q0.x, plane.b * q0.y);
-    return std::isfinite(plane.a) && std::isfinite(plane.b) && std::isfinite(plane.c);
+    slopes.a = differenceOfProducts(dw1, d2.y, dw2, d1.y) / a2;
+    slopes.b = differenceOfProducts(dw2, d1.x, dw1, d2.x) / a2;
+    slopes.c = 0.0;
+    return std::isfinite(slopes.a) && std::isfinite(slopes.b);
+}
+
+bool anchorPlane(const ScreenTriangle& t, const DepthPlane& slopes, const glm::dvec2& origin, DepthPlane& plane) {
+    const glm::dvec2 q0 = t.raster[0] - origin;
+    plane.a = slopes.a;
+    plane.b = slopes.b;
+    plane.c = t.inv_depth[0] - std::fma(slopes.a, q0.x, slopes.b * q0.y);
+    return std::isfinite(plane.c);
+}
+
+bool inverseDepthPlane(const ScreenTriangle& t, const glm::dvec2& origin, DepthPlane& plane) {
+    DepthPlane slopes;
+    return inverseDepthSlopes(t, slopes) && anchorPlane(t, slopes, origin, plane);
 }
 
 bool evalSource(const ScreenTriangle& t, const glm::dvec2& raster, SourceSample& out) {

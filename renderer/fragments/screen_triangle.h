@@ -56,6 +56,11 @@ inline DepthOrder compareDepth(double wp, double wq, double rel) {
 // The inverse-depth plane of t in coordinates relative to origin (raster minus origin), so that evaluating
 // it near the origin does not cancel. Returns false for degenerate (zero-area) triangles.
 bool inverseDepthPlane(const ScreenTriangle& t, const glm::dvec2& origin, DepthPlane& plane);
+// The same in two steps, for a caller that needs t's plane at many origins: the slopes a, b do not depend
+// on the origin (c is left 0; false for degenerate triangles), and anchorPlane sets c for one origin. The
+// result is inverseDepthPlane's, bit for bit.
+bool inverseDepthSlopes(const ScreenTriangle& t, DepthPlane& slopes);
+bool anchorPlane(const ScreenTriangle& t, const DepthPlane& slopes, const glm::dvec2& origin, DepthPlane& plane);
 
 // What a raster point means on the source triangle.
 struct SourceSample {
