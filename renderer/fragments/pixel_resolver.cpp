@@ -10,17 +10,23 @@ namespace clipblur {
 
 namespace {
 
-// Sources after surface src is found coincident with a piece holding `sources`: one source per layer,
-// within a layer the lower source index wins (z-fighting resolved independently of insertion order).
-std::uint8_t mergeSources(std::array<FragmentSource, 2>& sources, std::uint8_t count, const FragmentSource& src) {
+// Sources (and their surfaces) after surface src is found coincident with a piece holding `sources`: one
+// source per layer, within a layer the lower source index wins (z-fighting resolved independently of
+// insertion order).
+std::uint8_t mergeSources(std::array<FragmentSource, 2>& sources, std::array<std::uint64_t, 2>& surfaces,
+                          std::uint8_t count, const FragmentSource& src, std::uint64_t surface) {
     for (int i = 0; i < count; ++i) {
         if (sources[i].layer == src.layer) {
-            if (src.source < sources[i].source) sources[i] = src;
+            if (src.source < sources[i].source) sources[i] = src, surfaces[i] = surface;
             return count;
         }
     }
-    sources[count++] = src;
-    if (count == 2 && sources[1].layer < sources[0].layer) std::swap(sources[0], sources[1]);
+    sources[count] = src;
+    surfaces[count++] = surface;
+    if (count == 2 && sources[1].layer < sources[0].layer) {
+        std::swap(sources[0], sources[1]);
+        std::swap(surfaces[0], surfaces[1]);
+    }
     return count;
 }
 
@@ -68,6 +74,7 @@ void PixelResolver::insertClipped(const ScreenTriangle& t, const ConvexPolygon& 
     for (int i = 0; i < local.n; ++i) local.v[i] -= glm::dvec2(px_, py_);
     double area = 0.0;
     if (dropIfSliver(local, area)) return;
+    surface_ = t.surface;
     insertPolygon(local, area, plane, FragmentSource{t.source, t.layer, t.weight});
 }
 
@@ -104,8 +111,17 @@ void PixelResolver::insertPolygon(const ConvexPolygon& local, double area, const
     Piece mine;
     mine.plane = plane;
     mine.sources[0] = src;
+    mine.surfaces[0] = surface_;
     mine.source_count = 1;
     mine.epoch = epoch_;
+    // A piece lies inside the part of every source it names, and one layer's parts of one surface do not
+    // overlap: a piece naming this polygon's surface and layer cannot overlap it.
+    const auto disjoint = [&](const Piece& q) {
+        if (surface_ == ScreenTriangle::kNoSurface) return false;
+        for (int i = 0; i < q.source_count; ++i)
+            if (q.surfaces[i] == surface_ && q.sources[i].layer == src.layer) return true;
+        return false;
+    };
     while (!work_.empty()) {
         const Work w = work_.back();
         work_.pop_back();
@@ -113,7 +129,7 @@ void PixelResolver::insertPolygon(const ConvexPolygon& local, double area, const
         bool consumed = false;
         for (std::size_t qi = w.start; qi < pieces_.size() && !consumed; ++qi) {
             const Piece& q = pieces_[qi];
-            if (q.dead || q.epoch == epoch_ || !q.box.overlaps(box)) continue;
+            if (q.dead || q.epoch == epoch_ || !q.box.overlaps(box) || disjoint(q)) continue;
             consumed = resolve(w.poly, qi, plane, src);
         }
         if (!consumed) addPiece(w.poly, mine, w.area);
@@ -152,12 +168,13 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
     Piece mine;
     mine.plane = plane;
     mine.sources[0] = src;
+    mine.surfaces[0] = surface_;
     mine.source_count = 1;
     mine.epoch = epoch_;
 
     if (all_close) {
         Piece mixed = q;
-        mixed.source_count = mergeSources(mixed.sources, q.source_count, src);
+        mixed.source_count = mergeSources(mixed.sources, mixed.surfaces, q.source_count, src, surface_);
         if (mixed.source_count == q.source_count && mixed.sources == q.sources) return true;  // Q wins
         if (mixed.sources[0] == src) mixed.plane = plane;
         mixed.epoch = epoch_;

@@ -64,6 +64,7 @@ private:
         DepthPlane plane;  // pixel-local inverse depth of sources[0]
         double area = 0.0;
         std::array<FragmentSource, 2> sources{};
+        std::array<std::uint64_t, 2> surfaces{ScreenTriangle::kNoSurface, ScreenTriangle::kNoSurface};  // per source
         std::uint8_t source_count = 1;
         std::uint32_t epoch = 0;  // insertion that created it; a polygon is never resolved against itself
         bool dead = false;
@@ -94,6 +95,7 @@ private:
     int px_ = 0;
     int py_ = 0;
     std::uint32_t epoch_ = 0;
+    std::uint64_t surface_ = ScreenTriangle::kNoSurface;  // ScreenTriangle::surface of the polygon being inserted
     std::vector<Piece> pieces_;
     std::vector<Work> work_;
     std::vector<Fragment> fragments_;
