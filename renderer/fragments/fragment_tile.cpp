@@ -110,22 +110,30 @@ bool behind(const DepthPlane& p, const DepthPlane& q, std::span<const glm::dvec2
     });
 }
 
-// Triangle ti's inverse-depth plane relative to pixel (x, y): inverseDepthPlane's, from slopes found once.
-bool planeAt(std::span<const ScreenTriangle> triangles, const TileScratch& scratch, std::uint32_t ti, int x, int y,
-             DepthPlane& plane) {
-    return anchorPlane(triangles[ti], scratch.slopes[ti], glm::dvec2(x, y), plane);
+// One pixel being resolved: the tile's triangles, the pixel's entries front to back, and the tile's scratch.
+struct PixelAt {
+    std::span<const ScreenTriangle> triangles;
+    std::span<const TileScratch::Entry> entries;
+    int x = 0;
+    int y = 0;
+    const ResolverSettings& settings;
+    TileScratch& scratch;
+};
+
+// Triangle ti's inverse-depth plane relative to the pixel: inverseDepthPlane's, from slopes found once.
+bool planeAt(const PixelAt& at, std::uint32_t ti, DepthPlane& plane) {
+    return anchorPlane(at.triangles[ti], at.scratch.slopes[ti], glm::dvec2(at.x, at.y), plane);
 }
 
-// Triangle ti's area in pixel (x, y), measured pixel-local as the resolver measures it; 0 for a sliver it
+// Triangle ti's area in the pixel, measured pixel-local as the resolver measures it; 0 for a sliver it
 // would drop. `piece` gets the pixel-local part (empty when the triangle contains the pixel or misses it).
-double pixelArea(TileScratch& scratch, std::uint32_t ti, int x, int y, const ResolverSettings& settings,
-                 ConvexPolygon& piece) {
+double pixelArea(const PixelAt& at, std::uint32_t ti, ConvexPolygon& piece) {
     piece.clear();
-    if (containsPixel(scratch, ti, x, y)) return 1.0;
-    if (!pixelPiece(scratch, ti, x, y, piece) || piece.degenerate()) return 0.0;
-    for (int k = 0; k < piece.n; ++k) piece.v[k] -= glm::dvec2(x, y);  // exact
+    if (containsPixel(at.scratch, ti, at.x, at.y)) return 1.0;
+    if (!pixelPiece(at.scratch, ti, at.x, at.y, piece) || piece.degenerate()) return 0.0;
+    for (int k = 0; k < piece.n; ++k) piece.v[k] -= glm::dvec2(at.x, at.y);  // exact
     const double area = piece.area();
-    return area > settings.min_area ? area : 0.0;
+    return area > at.settings.min_area ? area : 0.0;
 }
 
 // One surface tried for a whole pixel: the pixel if S covers it, else which triangle of another surface
@@ -143,46 +151,44 @@ struct WholeTry {
 // to rounding, without clipping pieces against each other; only triangles that neither contain the pixel
 // nor lie behind S are clipped. Each layer's source is its largest part of S, whose triangle is best
 // conditioned for evaluating the surface across the pixel. `plane` is S's, relative to the pixel.
-WholeTry trySurface(std::span<const ScreenTriangle> triangles, std::span<const TileScratch::Entry> entries, int x, int y,
-                    std::uint64_t surface, const DepthPlane& plane, const ResolverSettings& settings,
-                    TileScratch& scratch, Fragment& out) {
+WholeTry trySurface(const PixelAt& at, std::uint64_t surface, const DepthPlane& plane, Fragment& out) {
+    const double rel = at.settings.coincident_rel;
     // Counter-clockwise, as resolved fragments are.
     const std::array<glm::dvec2, 4> corners{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)};
     std::array<double, 2> covered{0.0, 0.0};
     std::array<double, 2> largest_area{0.0, 0.0};
     std::array<std::uint32_t, 2> largest{0, 0};
     ConvexPolygon piece;
-    for (const TileScratch::Entry& e : entries) {
-        const ScreenTriangle& t = triangles[e.triangle];
+    for (const TileScratch::Entry& e : at.entries) {
+        const ScreenTriangle& t = at.triangles[e.triangle];
         if (t.surface == surface) {
-            const double area = pixelArea(scratch, e.triangle, x, y, settings, piece);
+            const double area = pixelArea(at, e.triangle, piece);
             covered[t.layer] += area;
             if (area > largest_area[t.layer]) largest_area[t.layer] = area, largest[t.layer] = e.triangle;
             continue;
         }
         DepthPlane q;
-        if (!planeAt(triangles, scratch, e.triangle, x, y, q)) return {};
-        if (behind(plane, q, corners, settings.coincident_rel)) continue;
-        if (pixelArea(scratch, e.triangle, x, y, settings, piece) == 0.0) continue;
-        const std::span<const glm::dvec2> at =
+        if (!planeAt(at, e.triangle, q)) return {};
+        if (behind(plane, q, corners, rel)) continue;
+        if (pixelArea(at, e.triangle, piece) == 0.0) continue;
+        const std::span<const glm::dvec2> vertices =
             piece.n > 0 ? std::span<const glm::dvec2>(piece.v.data(), std::size_t(piece.n)) : std::span(corners);
-        if (!behind(plane, q, at, settings.coincident_rel)) return {false, e.triangle};
+        if (!behind(plane, q, vertices, rel)) return {false, e.triangle};
     }
     for (int layer = 0; layer < 2; ++layer)
         if (largest_area[layer] > 0.0 && !(std::abs(covered[layer] - 1.0) <= kFullPixelSlack)) return {};
     if (largest_area[0] == 0.0 && largest_area[1] == 0.0) return {};
     if (largest_area[0] > 0.0 && largest_area[1] > 0.0) {
         DepthPlane p0, p1;
-        if (!planeAt(triangles, scratch, largest[0], x, y, p0) || !planeAt(triangles, scratch, largest[1], x, y, p1) ||
-            !coincide(p0, p1, corners, settings.coincident_rel))
+        if (!planeAt(at, largest[0], p0) || !planeAt(at, largest[1], p1) || !coincide(p0, p1, corners, rel))
             return {};
     }
     out = Fragment();
     out.vertex_count = 4;
-    for (int k = 0; k < 4; ++k) out.vertices[k] = glm::dvec2(x, y) + corners[k];
+    for (int k = 0; k < 4; ++k) out.vertices[k] = glm::dvec2(at.x, at.y) + corners[k];
     for (int layer = 0; layer < 2; ++layer) {
         if (largest_area[layer] == 0.0) continue;
-        const ScreenTriangle& t = triangles[largest[layer]];
+        const ScreenTriangle& t = at.triangles[largest[layer]];
         out.sources[out.source_count++] = FragmentSource{t.source, t.layer, t.weight};
     }
     out.area = 1.0;
@@ -191,27 +197,26 @@ WholeTry trySurface(std::span<const ScreenTriangle> triangles, std::span<const T
 
 // Tries the surface of the first triangle (front to back) that contains the pixel, else of the first that
 // reaches it, then in turn the surface of a triangle found in front of the one tried, up to three.
-bool wholePixel(std::span<const ScreenTriangle> triangles, std::span<const TileScratch::Entry> entries, int x, int y,
-                const ResolverSettings& settings, TileScratch& scratch, Fragment& out) {
+bool wholePixel(const PixelAt& at, Fragment& out) {
     constexpr int kTries = 3;
     std::optional<std::uint32_t> candidate;
-    for (const TileScratch::Entry& e : entries)
-        if (containsPixel(scratch, e.triangle, x, y)) {
+    for (const TileScratch::Entry& e : at.entries)
+        if (containsPixel(at.scratch, e.triangle, at.x, at.y)) {
             candidate = e.triangle;
             break;
         }
     ConvexPolygon piece;
-    for (auto e = entries.begin(); !candidate && e != entries.end(); ++e)
-        if (pixelArea(scratch, e->triangle, x, y, settings, piece) > 0.0) candidate = e->triangle;
+    for (auto e = at.entries.begin(); !candidate && e != at.entries.end(); ++e)
+        if (pixelArea(at, e->triangle, piece) > 0.0) candidate = e->triangle;
     std::array<std::uint64_t, kTries> tried{};
     for (int k = 0; k < kTries && candidate; ++k) {
-        const std::uint64_t surface = triangles[*candidate].surface;
+        const std::uint64_t surface = at.triangles[*candidate].surface;
         if (surface == ScreenTriangle::kNoSurface || std::find(tried.begin(), tried.begin() + k, surface) != tried.begin() + k)
             return false;
         tried[std::size_t(k)] = surface;
         DepthPlane plane;
-        if (!planeAt(triangles, scratch, *candidate, x, y, plane)) return false;
-        const WholeTry result = trySurface(triangles, entries, x, y, surface, plane, settings, scratch, out);
+        if (!planeAt(at, *candidate, plane)) return false;
+        const WholeTry result = trySurface(at, surface, plane, out);
         if (result.whole) return true;
         candidate = result.in_front;
     }
@@ -298,18 +303,17 @@ void resolveTile(std::span<const ScreenTriangle> triangles, const PixelBounds& r
         const int y = rect.y0 + int(i / rect.width());
         const std::size_t first = out.fragments.size();
         resolver.reset(x, y);
-        const std::span<const TileScratch::Entry> entries(&*begin, std::size_t(end - begin));
+        const PixelAt at{triangles, {&*begin, std::size_t(end - begin)}, x, y, settings, scratch};
         Fragment whole;
-        if (triangles[begin->triangle].surface != ScreenTriangle::kNoSurface &&
-            wholePixel(triangles, entries, x, y, settings, scratch, whole)) {
+        if (triangles[begin->triangle].surface != ScreenTriangle::kNoSurface && wholePixel(at, whole)) {
             out.fragments.push_back(whole);
             CLIPBLUR_DCHECK(wellFormed(whole, x, y));
             out.covered_area[i] = 1.0;
             continue;
         }
         DepthPlane plane;
-        for (const TileScratch::Entry& e : entries)
-            if (pixelPiece(scratch, e.triangle, x, y, piece) && planeAt(triangles, scratch, e.triangle, x, y, plane))
+        for (const TileScratch::Entry& e : at.entries)
+            if (pixelPiece(scratch, e.triangle, x, y, piece) && planeAt(at, e.triangle, plane))
                 resolver.insertClipped(triangles[e.triangle], piece, plane);
         resolver.appendFragments(out.fragments);
         for (std::size_t f = first; f < out.fragments.size(); ++f) CLIPBLUR_DCHECK(wellFormed(out.fragments[f], x, y));
