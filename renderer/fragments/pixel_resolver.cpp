@@ -74,8 +74,11 @@ void PixelResolver::insertClipped(const ScreenTriangle& t, const ConvexPolygon& 
     for (int i = 0; i < local.n; ++i) local.v[i] -= glm::dvec2(px_, py_);
     double area = 0.0;
     if (dropIfSliver(local, area)) return;
-    surface_ = t.surface;
-    insertPolygon(local, area, plane, FragmentSource{t.source, t.layer, t.weight});
+    mine_ = Piece{};
+    mine_.plane = plane;
+    mine_.sources[0] = FragmentSource{t.source, t.layer, t.weight};
+    mine_.surfaces[0] = t.surface;
+    insertPolygon(local, area);
 }
 
 void PixelResolver::queueWork(const ConvexPolygon& poly, std::size_t start, double area) {
@@ -102,24 +105,19 @@ bool PixelResolver::hiddenInFullPixel(const ConvexPolygon& local, const DepthPla
     return covered.value() >= 1.0 - kFullPixelSlack;
 }
 
-void PixelResolver::insertPolygon(const ConvexPolygon& local, double area, const DepthPlane& plane,
-                                  const FragmentSource& src) {
-    if (hiddenInFullPixel(local, plane)) return;
-    ++epoch_;
+void PixelResolver::insertPolygon(const ConvexPolygon& local, double area) {
+    if (hiddenInFullPixel(local, mine_.plane)) return;
+    mine_.epoch = ++epoch_;
     work_.clear();
     queueWork(local, 0, area);
-    Piece mine;
-    mine.plane = plane;
-    mine.sources[0] = src;
-    mine.surfaces[0] = surface_;
-    mine.source_count = 1;
-    mine.epoch = epoch_;
+    const std::uint64_t surface = mine_.surfaces[0];
+    const int layer = mine_.sources[0].layer;
     // A piece lies inside the part of every source it names, and one layer's parts of one surface do not
     // overlap: a piece naming this polygon's surface and layer cannot overlap it.
     const auto disjoint = [&](const Piece& q) {
-        if (surface_ == ScreenTriangle::kNoSurface) return false;
+        if (surface == ScreenTriangle::kNoSurface) return false;
         for (int i = 0; i < q.source_count; ++i)
-            if (q.surfaces[i] == surface_ && q.sources[i].layer == src.layer) return true;
+            if (q.surfaces[i] == surface && q.sources[i].layer == layer) return true;
         return false;
     };
     while (!work_.empty()) {
@@ -130,14 +128,13 @@ void PixelResolver::insertPolygon(const ConvexPolygon& local, double area, const
         for (std::size_t qi = w.start; qi < pieces_.size() && !consumed; ++qi) {
             const Piece& q = pieces_[qi];
             if (q.dead || q.epoch == epoch_ || !q.box.overlaps(box) || disjoint(q)) continue;
-            consumed = resolve(w.poly, qi, plane, src);
+            consumed = resolve(w.poly, qi);
         }
-        if (!consumed) addPiece(w.poly, mine, w.area);
+        if (!consumed) addPiece(w.poly, mine_, w.area);
     }
 }
 
-bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthPlane& plane,
-                            const FragmentSource& src) {
+bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi) {
     outside_.clear();
     ConvexPolygon overlap;
     splitByConvex(w, pieces_[qi].poly, outside_, overlap);
@@ -151,6 +148,8 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
     if (dropIfSliver(overlap, overlap_area)) return true;
 
     const Piece q = pieces_[qi];  // a copy: pieces_ may grow below
+    const DepthPlane& plane = mine_.plane;
+    const FragmentSource& src = mine_.sources[0];
     std::array<double, kMaxPolygonVertices> d;
     bool all_close = true;
     bool any_nearer = false;
@@ -165,16 +164,9 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
         any_farther |= order == DepthOrder::Farther;
     }
 
-    Piece mine;
-    mine.plane = plane;
-    mine.sources[0] = src;
-    mine.surfaces[0] = surface_;
-    mine.source_count = 1;
-    mine.epoch = epoch_;
-
     if (all_close) {
         Piece mixed = q;
-        mixed.source_count = mergeSources(mixed.sources, mixed.surfaces, q.source_count, src, surface_);
+        mixed.source_count = mergeSources(mixed.sources, mixed.surfaces, q.source_count, src, mine_.surfaces[0]);
         if (mixed.source_count == q.source_count && mixed.sources == q.sources) return true;  // Q wins
         if (mixed.sources[0] == src) mixed.plane = plane;
         mixed.epoch = epoch_;
@@ -184,7 +176,7 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
     }
     if (!any_farther) {
         shrinkPiece(qi, w, nullptr);
-        addPiece(overlap, mine, overlap_area);
+        addPiece(overlap, mine_, overlap_area);
         return true;
     }
     if (!any_nearer) return true;  // P hidden behind Q over the whole overlap
@@ -194,7 +186,7 @@ bool PixelResolver::resolve(const ConvexPolygon& w, std::size_t qi, const DepthP
     ConvexPolygon farther;
     splitByValues(overlap, d.data(), nearer, farther);
     shrinkPiece(qi, w, &farther);
-    addPiece(nearer, mine);
+    addPiece(nearer, mine_);
     return true;
 }
 

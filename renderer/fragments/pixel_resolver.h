@@ -78,12 +78,13 @@ private:
     // the same polygon is not measured again on its way from clipping to a stored piece.
     static constexpr double kAreaUnknown = -1.0;
 
-    void insertPolygon(const ConvexPolygon& local, double area, const DepthPlane& plane, const FragmentSource& src);
+    // Inserts mine_'s polygon (pixel-local, of known area) into the pieces.
+    void insertPolygon(const ConvexPolygon& local, double area);
     // Whether the pieces fill the pixel and every one lies in front of `plane` over `local`: then the
     // polygon is hidden, which clipping it against each piece would find at greater cost.
     bool hiddenInFullPixel(const ConvexPolygon& local, const DepthPlane& plane) const;
-    // Resolves work polygon w against piece qi; returns false when they do not overlap.
-    bool resolve(const ConvexPolygon& w, std::size_t qi, const DepthPlane& plane, const FragmentSource& src);
+    // Resolves work polygon w (a part of mine_'s) against piece qi; returns false when they do not overlap.
+    bool resolve(const ConvexPolygon& w, std::size_t qi);
     // Appends poly (split to stored capacity, slivers dropped) as pieces with the given data.
     void addPiece(const ConvexPolygon& poly, const Piece& data, double area = kAreaUnknown);
     // Replaces piece qi by Q minus w (plus an optional extra part of Q).
@@ -95,7 +96,7 @@ private:
     int px_ = 0;
     int py_ = 0;
     std::uint32_t epoch_ = 0;
-    std::uint64_t surface_ = ScreenTriangle::kNoSurface;  // ScreenTriangle::surface of the polygon being inserted
+    Piece mine_;  // the data of the polygon being inserted, given to each piece it leaves
     std::vector<Piece> pieces_;
     std::vector<Work> work_;
     std::vector<Fragment> fragments_;
