@@ -325,7 +325,7 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
             // how far a path leaves the parabola a sweep follows (its distance from the parabola through
             // its positions at the segment's ends and middle: third order, falling as the cube of the count).
             // Inside one group, what the eye's motion relative to it slides over what (parallax).
-            constexpr double kChordTolerance = 0.1;  // px at reclip_spacing 1, scaled with it
+            constexpr double kChordTolerance = 0.1;  // px at reclip_spacing 1, scaled with it (below)
             // Fragments move rigidly along their centroid's path, stretched along the raster axes as the
             // surface is (SweepPath); a surface that turns or shears under them (a roll) is followed to
             // within FragmentMotion::unstretched_error / n with n intervals, kept at kChordTolerance.
@@ -341,7 +341,10 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
             const RasterBounds box{{t.x0, t.y0}, {t.x1, t.y1}};
             const double relative = std::max(relativeMotion(refs, motion, box, motionGroup),
                                              slidingWithin(refs, motion, box, motionGroup, parallax));
-            const double r = options.reclip_spacing, tolerance = kChordTolerance * r;
+            // A fragment off its path by d px is a first-order error in d, while positions r px apart
+            // leave an error of order r^2 below a pixel (midpoint rule) and r above: the tolerance follows
+            // the positions' order, so re-clips do not set the error at fine spacings.
+            const double r = options.reclip_spacing, tolerance = kChordTolerance * r * std::min(r, 1.0);
             p.count = subframeCount(std::max({relative / r, std::cbrt(deviation / tolerance), unstretched / tolerance}),
                                     max_subframes, &p.capped);
         }

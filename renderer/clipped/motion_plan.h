@@ -78,7 +78,7 @@ struct MotionPlanOptions {
     bool sweep = false;
     double point_spacing = 1.0;  // point subframes: pixels a vertex moves between them
     // Sweep: pixels surfaces of different motion groups move relative to each other between re-clips;
-    // the tolerances for how far a sweep strays from a path scale with it.
+    // the tolerances for how far a sweep strays from a path scale with it, as its square below a pixel.
     double reclip_spacing = 1.0;
     const Backdrop& backdrop;
 };
