@@ -206,22 +206,22 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     }
     ClippedStats previous = pilot.render.stats.clipped();
     // A correction that did the work of the render before it (one sweep position per interval at every
-    // coarser spacing, as on the facade of many/building_dolly) shows a plateau: where that render
-    // missed the target against the pilot, no coarser setting meets it, and the pilot, made already, is
-    // the answer. So it is where the pilot has no estimate and the correction would leave the judgement
-    // against it (within kMeasuredRatio of the pilot's setting, or finer): nothing there could be judged.
+    // coarser spacing, as on the facade of many/building_dolly) shows a plateau: the setting no longer
+    // sets the work between the two. Under the target no coarser setting changes anything, so the
+    // corrections stop. Over it a finer one does: the order from the anchor to the plateau's error (now
+    // known at the finer of the two settings) carries it on once more. Where that still misses by more
+    // than 4/3, the pilot, made already, is the answer. So it is where the pilot has no estimate and the
+    // correction would leave the judgement against it (within kMeasuredRatio of the pilot's setting, or
+    // finer): nothing there could be judged.
     bool keep_pilot = false, plateau = false;
     // Corrections where the model missed by more than 4/3: the order measured between the anchor and this
     // render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
     // than the pilot (renders are dear there), two where it is measured against it (they are cheap).
-    // None where this render did the work of the one before it (the same re-clips and sweep positions):
-    // the setting no longer sets the work there, as where re-clips leave one position per interval, so
-    // another render could only repeat it.
     for (int k = 0; k < (measured(final_job) ? 2 : 1) && !pilot.answer; ++k) {
         const double interval = tuning.intervalOf(final_job);
         if (sameWork(previous, result.stats.clipped())) {
             plateau = k > 0;  // the first render repeating the pilot's work is no plateau of corrections
-            break;
+            if (!plateau || reached <= target * 4.0 / 3.0) break;
         }
         if (!(reached > 0.0 && pilot.anchor_error > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
             std::abs(std::log(interval / pilot.anchor_interval)) <= 1e-6)

@@ -22,7 +22,9 @@ namespace clipblur {
 // refinement changed no pixel). Where the render's own estimate then misses the
 // target by more than 4/3, the order measured between pilot and render corrects it once (one more
 // render). A render at an interval at least 1.5x the pilot's is judged instead by its RMS difference from
-// the pilot image (the pilot is the finer solution) and corrected up to twice. Every render that chooses is
+// the pilot image (the pilot is the finer solution) and corrected up to twice; a correction that does the
+// work of the render before it (a plateau) is carried on finer where it is over the target, and ends the
+// corrections where it is under. Every render that chooses is
 // of the whole film, so every shard of a frame chooses alike; a shard then renders its window at the
 // chosen setting. Sweep's automatic re-clips are spaced by the spacing too where it is over a pixel, so a
 // render coarser than the pilot is judged with its re-clip error; the pilot's own is not seen.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/job_loader.h"
 #include "renderer/clipped/error_target.h"
 #include "renderer/clipped/time_error.h"
 #include "renderer/render.h"
@@ -288,6 +289,28 @@ TEST(ErrorTarget, PilotIsKeptWhereEveryCoarserSpacingMissesTheTarget) {
         for (int x = 0; x < 32; ++x)
             sum += std::pow(red[static_cast<std::size_t>(y * 32 + x)] - testing::translatingPixelCoverage(quad, v, x, y), 2);
     const double error = std::sqrt(sum / (32.0 * 32.0));  // R = G = B: white under ambient 1
+    EXPECT_GT(error, 0.5 * kTarget);
+    EXPECT_LT(error, 1.5 * kTarget);
+}
+
+// many/deforming at 160x90 under a target of 1e-2: the pilot (1 px) has no estimate, the probe 4x
+// coarser anchors the model, and the first correction (19.7 px) does the work of the render before it
+// (28.6 px), 1.6e-2 against the pilot: a plateau over the target. A finer setting changes the work there,
+// so one more correction is made (14.4 px, 8.0e-3 against the reference below) instead of giving way to
+// the pilot, whose error (3e-5) is 300x under the target: 0.5 .. 1.5 of the target, as issue 20 asks.
+TEST(ErrorTarget, PlateauOverTheTargetIsCorrectedFinerNotAnsweredByThePilot) {
+    constexpr double kTarget = 1e-2;
+    const std::string path = std::string(CLIPBLUR_SOURCE_DIR) + "/configs/bench/many/deforming.yaml";
+    RenderJob job = loadJob(path, {"film.width=160", "film.height=90", "render.time_integration=sweep"});
+    job.render.sweep_spacing = 0.5;  // error 3e-5 at 1 px: a reference 300x finer than the target
+    const RenderResult reference = renderFrame(job, 0);
+    job.render.error_target = kTarget;
+    job.render.sweep_spacing = 1.0;
+    const RenderResult r = renderFrame(job, 0);
+    const ErrorTargetStats& stats = *r.stats.clipped().target;
+    EXPECT_FALSE(stats.pilot_kept);
+    EXPECT_GT(stats.sweep_spacing, 4.0);
+    const double error = rmsDifference(reference.image, r.image);
     EXPECT_GT(error, 0.5 * kTarget);
     EXPECT_LT(error, 1.5 * kTarget);
 }
