@@ -171,6 +171,16 @@ struct ShadedFragment {
     double inv_depth = 0.0;    // 0 when not sampled
 };
 
+// Screen triangle s's shading, set up when a fragment of it is first shaded in this re-clip.
+const TriangleShading& shadingOf(ReclipScratch& scratch, std::uint32_t s, const Shader& shader) {
+    std::int32_t& slot = scratch.shading_slot[s];
+    if (slot < 0) {
+        slot = static_cast<std::int32_t>(scratch.shading.size());
+        scratch.shading.emplace_back(FragmentSurface{scratch.screen[s], scratch.sources[s]}, shader);
+    }
+    return scratch.shading[static_cast<std::size_t>(slot)];
+}
+
 ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
     ++pass.stats.fragments;
     if (fragment.source_count > 1) ++pass.stats.mixed;
@@ -201,7 +211,7 @@ ShadedFragment shadeResolved(ReclipPass& pass, const Fragment& fragment) {
         if (shade_once && k == 1) continue;
         const double m = shade_once ? 1.0 : fragment.mix(k);
         scratch.pieces.clear();
-        shadeFragment(polygon, {scratch.screen[s], scratch.sources[s]}, pass.tile.shader, now, scratch.pieces);
+        shadingOf(scratch, s, pass.tile.shader).shade(polygon, now, scratch.pieces);
         pass.stats.shaded_pieces += static_cast<long long>(scratch.pieces.size());
         glm::dvec3 sum(0.0);
         double area = 0.0;
@@ -308,6 +318,8 @@ PixelBounds resolveRegion(ReclipPass& pass) {
     scratch.origin.clear();
     scratch.sources.clear();
     for (const FragmentRef ref : pass.tile.refs) propagate(pass.tile, pass.at, ref, scratch, pass.stats);
+    scratch.shading_slot.assign(scratch.screen.size(), -1);
+    scratch.shading.clear();
     const PixelBounds region = pass.at.sweep ? pass.at.sweep->resolve : pass.tile.tile;
     resolveTile(scratch.screen, region, {}, scratch.tile, scratch.fragments);
     if (pass.tile.audit) auditTile(scratch.screen, scratch.fragments, pass.stats.audit);

@@ -28,6 +28,10 @@ struct ReclipScratch {
     std::vector<FragmentRef> origin;      // per screen triangle
     std::vector<SourceTriangle> sources;  // per screen triangle: its vertices on the mesh triangle
     std::vector<ShadedPiece> pieces;
+    // Per screen triangle, the index of its shading in `shading`, -1 until a fragment of it is shaded:
+    // both reset per re-clip, as the screen triangles are.
+    std::vector<std::int32_t> shading_slot;
+    std::vector<TriangleShading> shading;
     std::vector<SweptPolygon> swept;  // sweep: the tile's polygons, in fragment order
     std::vector<SweptPolygon> staging;  // sweep: one pixel's polygons after merging
     std::vector<std::pair<ConvexPolygon, glm::dvec3>> textured;  // sweep: pieces with their colour per px^2
