@@ -61,11 +61,14 @@ struct RenderSettings {
     // Subframes: the paper's point samples, every subframe re-clipped. Sweep: a subframe's re-clipped
     // fragments also stand for the rest of its interval, each moved along its own displacement to
     // positions sweep_spacing pixels apart, so visibility is re-clipped far less often than a pixel:
-    // automatic re-clips follow relative motion, max(1, sweep_spacing) pixels of it apart.
+    // automatic re-clips follow relative motion, sweep_spacing (or reclip_spacing) pixels of it apart.
     // Auto: per shutter segment the cheaper of the two at equal spacing (point subframes then put
     // vertices sweep_spacing pixels apart; renderer/clipped/integration_cost.h).
     TimeIntegration time_integration = TimeIntegration::Auto;
     double sweep_spacing = 1.0;
+    // Sweep: pixels of relative motion between automatic re-clips (their path tolerances scale with it as
+    // with sweep_spacing); 0 follows sweep_spacing.
+    double reclip_spacing = 0.0;
     SweepTime sweep_time = SweepTime::Points;
     // Clipped: the RMS time-sampling error (R, G, B, white = 1) to aim for; 0: off. A pilot render
     // measures estimated_error and the spacing (sweep, auto) or subframe count (subframes) is chosen from it

@@ -360,6 +360,8 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
             static_cast<TimeIntegration>(asChoice(*t, "render.time_integration", {"subframes", "sweep", "auto"}));
     const bool spacing_given = map.has("sweep_spacing");
     r.sweep_spacing = map.number("sweep_spacing", r.sweep_spacing, 0.01, 1000.0);
+    const bool reclips_given = map.has("reclip_spacing");
+    r.reclip_spacing = map.number("reclip_spacing", r.reclip_spacing, 0.01, 1000.0);
     if (const ConfigNode* t = map.optional("sweep_time"))
         r.sweep_time = static_cast<SweepTime>(asChoice(*t, "render.sweep_time", {"points", "exact"}));
     if (const ConfigNode* e = map.optional("error_target")) {
@@ -373,6 +375,8 @@ void readRender(MapReader map, RenderSettings& r, SceneFileSource& scene_file) {
         const bool count = r.time_integration != TimeIntegration::Sweep;
         if (spacing && spacing_given)
             throwConfigError(e->loc, "'render.error_target' picks sweep_spacing: leave 'render.sweep_spacing' out");
+        if (spacing && reclips_given)
+            throwConfigError(e->loc, "'render.error_target' picks reclip_spacing: leave 'render.reclip_spacing' out");
         if (count && r.subframes > 0)
             throwConfigError(e->loc, "'render.error_target' picks the subframe count: leave 'render.subframes' at auto");
     }

@@ -148,6 +148,55 @@ Pilot runPilot(const Tuning& tuning, int frame, const RenderCallbacks& quiet) {
     return pilot;
 }
 
+// A render and what it was judged to reach.
+struct Choice {
+    RenderJob job;
+    RenderResult result;
+    double reached = 0.0;
+};
+
+double reclipSpacing(const RenderJob& job) {
+    return job.render.reclip_spacing > 0.0 ? job.render.reclip_spacing : job.render.sweep_spacing;
+}
+
+// The error a sweep's estimate does not see: visibility frozen between re-clips and fragments carried
+// rigidly over surfaces that turn under them. A render with re-clips at half the spacing measures it:
+// their RMS difference d holds both time-sampling errors (estimated, nearly independent, so taken off in
+// quadrature) and the change in re-clip error. That error falls about as the re-clip count c (what one
+// surface hides of another moves by the re-clip spacing), so E(c1) - E(c2) = E(c2) (c2 / c1 - 1). Where
+// the finer render still misses by more than 4/3, the re-clips are refined once more, to what the time
+// error leaves of the target, by the count's measured response to the spacing.
+void checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Choice& choice, int& renders) {
+    const double target = tuning.job.render.error_target;
+    const ClippedStats& first = choice.result.stats.clipped();
+    RenderJob finer = choice.job;
+    finer.render.reclip_spacing = std::max(kMinSpacing, reclipSpacing(choice.job) / 2.0);
+    RenderResult second = renderClipped(finer, frame, quiet);
+    ++renders;
+    const double c1 = static_cast<double>(first.subframes_total), c2 = static_cast<double>(second.stats.clipped().subframes_total);
+    if (!(c2 > c1 && c1 > 0.0)) return;  // the re-clips do not follow the spacing here: nothing to see
+    const double e1 = first.estimated_error, e2 = second.stats.clipped().estimated_error;
+    const double d = rmsDifference(second.image, choice.result.image);
+    const double reclip2 = std::sqrt(std::max(0.0, d * d - e1 * e1 - e2 * e2)) / (c2 / c1 - 1.0);
+    const double total1 = std::hypot(e1, reclip2 * c2 / c1), total2 = std::hypot(e2, reclip2);
+    if (total1 <= target * 4.0 / 3.0) {
+        choice.reached = total1;
+        return;
+    }
+    choice = {finer, std::move(second), total2};
+    if (total2 <= target * 4.0 / 3.0) return;
+    const double budget = std::sqrt(std::max(target * target - e2 * e2, 0.25 * target * target));
+    const double response = std::log(c2 / c1) / std::log(2.0);  // count ~ spacing^-response
+    RenderJob third = finer;
+    third.render.reclip_spacing =
+        std::max(kMinSpacing, reclipSpacing(finer) / std::pow(reclip2 / budget, 1.0 / response));
+    RenderResult result = renderClipped(third, frame, quiet);
+    ++renders;
+    const ClippedStats& s = result.stats.clipped();
+    const double c3 = std::max(1.0, static_cast<double>(s.subframes_total));
+    choice = {third, std::move(result), std::hypot(s.estimated_error, reclip2 * c2 / c3)};
+}
+
 }  // namespace
 
 double rmsDifference(const Image& fine, const Image& image) {
@@ -191,18 +240,18 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     const auto errorOf = [&](const RenderJob& j, const RenderResult& r) {
         return measured(j) ? rmsDifference(pilot.render.image, r.image) : r.stats.clipped().estimated_error;
     };
-    RenderJob final_job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target,
-                                                     pilot.coarser_order > 0.0 ? pilot.coarser_order : tuning.coarserOrder()));
+    Choice choice{.job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target,
+                                                    pilot.coarser_order > 0.0 ? pilot.coarser_order : tuning.coarserOrder())),
+                  .result = {},
+                  .reached = pilot.anchor_error};
     int renders = pilot.renders;
-    RenderResult result;
-    double reached = pilot.anchor_error;
     if (pilot.answer) {
-        final_job = tuning.at(pilot.anchor_interval);
-        result = std::move(*pilot.answer);
+        choice.job = tuning.at(pilot.anchor_interval);
+        choice.result = std::move(*pilot.answer);
     } else {
-        result = renderClipped(final_job, frame, shown);
+        choice.result = renderClipped(choice.job, frame, shown);
         ++renders;
-        reached = errorOf(final_job, result);
+        choice.reached = errorOf(choice.job, choice.result);
     }
     ClippedStats previous = pilot.render.stats.clipped();
     // A correction that did the work of the render before it (one sweep position per interval at every
@@ -217,55 +266,60 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     // Corrections where the model missed by more than 4/3: the order measured between the anchor and this
     // render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
     // than the pilot (renders are dear there), two where it is measured against it (they are cheap).
-    for (int k = 0; k < (measured(final_job) ? 2 : 1) && !pilot.answer; ++k) {
-        const double interval = tuning.intervalOf(final_job);
-        if (sameWork(previous, result.stats.clipped())) {
+    for (int k = 0; k < (measured(choice.job) ? 2 : 1) && !pilot.answer; ++k) {
+        const double interval = tuning.intervalOf(choice.job);
+        if (sameWork(previous, choice.result.stats.clipped())) {
             plateau = k > 0;  // the first render repeating the pilot's work is no plateau of corrections
-            if (!plateau || reached <= target * 4.0 / 3.0) break;
+            if (!plateau || choice.reached <= target * 4.0 / 3.0) break;
         }
-        if (!(reached > 0.0 && pilot.anchor_error > 0.0) || (reached <= target * 4.0 / 3.0 && reached >= target * 0.75) ||
+        if (!(choice.reached > 0.0 && pilot.anchor_error > 0.0) || (choice.reached <= target * 4.0 / 3.0 && choice.reached >= target * 0.75) ||
             std::abs(std::log(interval / pilot.anchor_interval)) <= 1e-6)
             break;
-        const double order = std::clamp(std::log(reached / pilot.anchor_error) / std::log(interval / pilot.anchor_interval), 1.0, 3.0);
-        const RenderJob corrected = tuning.at(interval * std::pow(target / reached, 1.0 / order));
+        const double order = std::clamp(std::log(choice.reached / pilot.anchor_error) / std::log(interval / pilot.anchor_interval), 1.0, 3.0);
+        const RenderJob corrected = tuning.at(interval * std::pow(target / choice.reached, 1.0 / order));
         if (tuning.intervalOf(corrected) == interval) break;
-        if (pilot.estimate <= 0.0 && reached > target && measured(final_job) && !measured(corrected)) {
+        if (pilot.estimate <= 0.0 && choice.reached > target && measured(choice.job) && !measured(corrected)) {
             keep_pilot = true;
             break;
         }
-        final_job = corrected;
-        previous = result.stats.clipped();
-        result = renderClipped(final_job, frame, shown);
+        choice.job = corrected;
+        previous = choice.result.stats.clipped();
+        choice.result = renderClipped(choice.job, frame, shown);
         ++renders;
-        reached = errorOf(final_job, result);
+        choice.reached = errorOf(choice.job, choice.result);
     }
-    keep_pilot = keep_pilot || (plateau && measured(final_job) && reached > target * 4.0 / 3.0);
+    keep_pilot = keep_pilot || (plateau && measured(choice.job) && choice.reached > target * 4.0 / 3.0);
     // A render judged against the pilot still twice the target when the corrections stop, where the
     // pilot's own estimate meets it: the model misled (the estimate sees time sampling alone, and a pilot
     // refined until it had one may owe it to re-clips capped at max_subframes). The pilot is the answer.
-    keep_pilot = keep_pilot || (measured(final_job) && reached > 2.0 * target && pilot.estimate > 0.0 && pilot.estimate <= target);
+    keep_pilot = keep_pilot || (measured(choice.job) && choice.reached > 2.0 * target && pilot.estimate > 0.0 && pilot.estimate <= target);
     if (keep_pilot) {
-        final_job = tuning.at(pilot.interval);
-        result = std::move(pilot.render);
-        reached = pilot.estimate;
+        choice.job = tuning.at(pilot.interval);
+        choice.result = std::move(pilot.render);
+        choice.reached = pilot.estimate;
     }
+    // A render judged by its own estimate has re-clip error the estimate does not see; one judged against
+    // the pilot has it but for the pilot's share, and the pilot was judged by the estimate alone.
+    const bool reclips_unseen = tuning.sweep && !measured(choice.job);
+    if (reclips_unseen && !pilot.answer && !keep_pilot) checkReclips(tuning, frame, quiet, choice, renders);
     if (job.render.window) {
-        RenderJob shard = final_job;
+        RenderJob shard = choice.job;
         shard.render.window = job.render.window;
-        result = renderClipped(shard, frame, callbacks);
+        choice.result = renderClipped(shard, frame, callbacks);
         ++renders;
     }
-    ClippedStats& stats = std::get<ClippedStats>(result.stats.method);
+    ClippedStats& stats = std::get<ClippedStats>(choice.result.stats.method);
     stats.target = ErrorTargetStats{.error_target = target,
                                     .pilot_estimated_error = pilot.estimate,
                                     .pilot_seconds = pilot_seconds,
                                     .renders = renders,
-                                    .sweep_spacing = tuning.sweep ? final_job.render.sweep_spacing : 0.0,
-                                    .subframes = tuning.sweep ? 0 : final_job.render.subframes,
-                                    .reached_error = reached,
-                                    .against_pilot = measured(final_job),
+                                    .sweep_spacing = tuning.sweep ? choice.job.render.sweep_spacing : 0.0,
+                                    .reclip_spacing = tuning.sweep ? choice.job.render.reclip_spacing : 0.0,
+                                    .subframes = tuning.sweep ? 0 : choice.job.render.subframes,
+                                    .reached_error = choice.reached,
+                                    .against_pilot = measured(choice.job),
                                     .pilot_kept = keep_pilot};
-    return result;
+    return choice.result;
 }
 
 }  // namespace clipblur

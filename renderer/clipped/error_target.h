@@ -27,7 +27,12 @@ namespace clipblur {
 // corrections where it is under. Every render that chooses is
 // of the whole film, so every shard of a frame chooses alike; a shard then renders its window at the
 // chosen setting. Sweep's automatic re-clips are spaced by the spacing too where it is over a pixel, so a
-// render coarser than the pilot is judged with its re-clip error; the pilot's own is not seen.
+// render coarser than the pilot is judged with its re-clip error; the pilot's own is not seen. A sweep
+// render judged by its own estimate (which sees sweep positions, not re-clips) is checked against one
+// with re-clips at half the spacing (render.reclip_spacing): their difference, less both estimates in
+// quadrature, is the change in re-clip error, taken to fall as the re-clip count. The finer render is the
+// answer where the first misses by more than 4/3, and one more refines the re-clips to what the time
+// error leaves of the target where that misses too.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval

@@ -63,6 +63,7 @@ render:
   ode_steps: 5
   time_integration: sweep
   sweep_spacing: 2.5
+  reclip_spacing: 0.75
   sweep_time: exact
   visibility_rays: 2
   shadows: true
@@ -105,7 +106,7 @@ const char* kJsonJob = R"({
      "deformation": [{"time": 0, "obj": "tri.obj"}, {"time": 1, "obj": "tri_moved.obj"}]}
   ],
   "render": {"method": "stochastic", "samples": 8, "subframes": 12, "max_subframes": 64, "path_method": "rk4",
-             "ode_steps": 5, "time_integration": "sweep", "sweep_spacing": 2.5, "sweep_time": "exact", "visibility_rays": 2, "shadows": true, "seed": 18446744073709551615, "tile_size": 16},
+             "ode_steps": 5, "time_integration": "sweep", "sweep_spacing": 2.5, "reclip_spacing": 0.75, "sweep_time": "exact", "visibility_rays": 2, "shadows": true, "seed": 18446744073709551615, "tile_size": 16},
   "output": {"path": "out.exr", "half": false, "png_preview": true, "aovs": ["motion", "depth"], "stats": "s.json"}
 }
 )";
@@ -188,6 +189,7 @@ TEST(JobLoader, YamlAndJsonGiveTheSameJob) {
         EXPECT_EQ(job->render.ode_steps, 5);
         EXPECT_EQ(job->render.time_integration, TimeIntegration::Sweep);
         EXPECT_EQ(job->render.sweep_spacing, 2.5);
+        EXPECT_EQ(job->render.reclip_spacing, 0.75);
         EXPECT_EQ(job->render.sweep_time, SweepTime::Exact);
         EXPECT_EQ(job->render.visibility_rays, 2);
         EXPECT_TRUE(job->render.shadows);
@@ -318,6 +320,8 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"ErrorTargetOutOfRange", "e.yaml", minimalYaml("render: {error_target: 0.9}\n"), ExitCode::Config, "0.9}", "must be in [1e-05, 0.5]"},
         ErrorCase{"ErrorTargetWithSpacing", "e.yaml", minimalYaml("render: {time_integration: sweep, sweep_spacing: 2, error_target: 0.001}\n"),
                   ExitCode::Config, "0.001}", "leave 'render.sweep_spacing' out"},
+        ErrorCase{"ErrorTargetWithReclipSpacing", "e.yaml", minimalYaml("render: {reclip_spacing: 0.5, error_target: 0.001}\n"),
+                  ExitCode::Config, "0.001}", "leave 'render.reclip_spacing' out"},
         ErrorCase{"ErrorTargetWithStochastic", "e.yaml", minimalYaml("render: {method: stochastic, error_target: 0.001}\n"),
                   ExitCode::Config, "0.001}", "is for render.method clipped, not stochastic"},
         ErrorCase{"ErrorTargetWithSpacingUnderAuto", "e.yaml", minimalYaml("render: {sweep_spacing: 2, error_target: 0.003}\n"),

@@ -347,6 +347,24 @@ TEST(SweepIntegration, AutoReclipsFollowTheSpacing) {
     }
 }
 
+// render.reclip_spacing reads the same re-clip rule at its own spacing, positions staying at
+// sweep_spacing: the counts above at reclip_spacing, whatever sweep_spacing is, and the bits of the plain
+// render where the two are equal.
+TEST(SweepIntegration, ReclipSpacingSetsTheReclipsAlone) {
+    const glm::dvec2 v(11.4, 3.7), w(-4.1, 1.3);
+    RenderJob passing = twoMovingQuads(movingQuad(1.0, 1.0, 31.0, 31.0, 10.0, w), movingQuad(4.3, 6.2, 14.7, 19.9, 6.0, v));
+    passing.render.time_integration = TimeIntegration::Sweep;
+    passing.render.sweep_spacing = 2.0;
+    const RenderResult plain = renderFrame(passing, 0);
+    passing.render.reclip_spacing = 2.0;
+    const RenderResult same = renderFrame(passing, 0);
+    EXPECT_EQ(same.image.find("R")->values, plain.image.find("R")->values);
+    for (const auto& [reclip, relative] : {std::tuple{0.25, 63}, {1.0, 16}, {4.0, 4}}) {
+        passing.render.reclip_spacing = reclip;
+        EXPECT_EQ(renderFrame(passing, 0).stats.clipped().subframes_max_per_tile, relative) << reclip;
+    }
+}
+
 // Below a pixel, positions s px apart leave an error of order s^2 (midpoint rule), and a fragment that
 // strays d px from its path (a roll turns it, the sweep does not) one of order d. Re-clips keep d under
 // 0.1 s^2 there, so that the error keeps the positions' order: under a roll of 0.25 rad over a striped
