@@ -25,6 +25,7 @@ struct RasterBounds {
         lo -= margin;
         hi += margin;
     }
+    bool contains(const glm::dvec2& p) const { return lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y; }
     // Touching boxes overlap, so callers never skip a real overlap.
     bool overlaps(const RasterBounds& o) const {
         return !empty() && !o.empty() && lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y;

@@ -63,6 +63,30 @@ CameraRelative combine(const std::array<CameraRelative, 3>& c, const glm::dvec3&
     return {b[0] * c[0].d + b[1] * c[1].d + b[2] * c[2].d, b[0] * c[0].g + b[1] * c[1].g + b[2] * c[2].g};
 }
 
+// The u in [0, 1] for which the box (1 - u) a + u b meets `c`, as [u0, u1]; none when it never does. Per
+// axis its low side must stay under c's high side and its high side over c's low side, each a bound on u.
+std::optional<std::pair<double, double>> blendMeets(const RasterBounds& a, const RasterBounds& b, const RasterBounds& c) {
+    if (a.empty() || b.empty()) return std::nullopt;
+    double u0 = 0.0, u1 = 1.0;
+    const auto atMost = [&](double v0, double v1, double limit) {  // v0 + u (v1 - v0) <= limit
+        if (v1 == v0) {
+            if (v0 > limit) u0 = 2.0;
+        } else if (v1 > v0) {
+            u1 = std::min(u1, (limit - v0) / (v1 - v0));
+        } else {
+            u0 = std::max(u0, (limit - v0) / (v1 - v0));
+        }
+    };
+    for (int axis = 0; axis < 2; ++axis) {
+        atMost(a.lo[axis], b.lo[axis], c.hi[axis]);
+        atMost(-a.hi[axis], -b.hi[axis], -c.lo[axis]);
+    }
+    if (u0 > u1) return std::nullopt;
+    return std::pair(u0, u1);
+}
+
+RasterBounds pointBox(const glm::dvec2& p) { return {p, p}; }
+
 std::atomic<std::uint64_t> next_sampler_id{1};
 
 }  // namespace
@@ -94,7 +118,7 @@ const std::vector<std::array<CameraRelative, 3>>* ShutterPathSampler::cornersOf(
 ShutterPathSampler::ShutterPathSampler(const Scene& scene, const Projection& projection, double t0, double t1,
                                        int intervals_per_piece)
     : scene_(&scene), middle_(scene, projection, 0.5 * (t0 + t1)), duration_(std::max(0.0, t1 - t0)),
-      id_(next_sampler_id++) {
+      film_{{0.0, 0.0}, {double(projection.width), double(projection.height)}}, id_(next_sampler_id++) {
     breakpoints_.push_back(t0);
     addKeyTimes(breakpoints_, t0, t1, scene.camera.keys);
     for (const Object& object : scene.objects) addMotionKeyTimes(object, t0, t1, breakpoints_);
@@ -141,26 +165,46 @@ bool ShutterPathSampler::measureStraight(std::span<const MeshPoint> vertices, Fr
     const MotionSnapshot& open = nodes_.front().snapshot;
     const MotionSnapshot& close = nodes_.back().snapshot;
     std::array<glm::dvec2, 3> o{}, c{};
-    double max_speed = 0.0;
+    RasterBounds at_open, at_close;
+    double max_speed = 0.0, all_speed = 0.0, all_path = 0.0;
+    bool seen = false;  // a vertex is on the image
     for (std::size_t k = 0; k < vertices.size(); ++k) {
         const ProjectedPoint a = project(open, *scene_, vertices[k]), b = project(close, *scene_, vertices[k]);
         if (a.behind || b.behind) return false;
-        out.swept.expand(a.raster);
-        out.swept.expand(b.raster);
+        at_open.expand(a.raster);
+        at_close.expand(b.raster);
         out.min_depth = std::min({out.min_depth, a.depth, b.depth});
         out.max_depth = std::max({out.max_depth, a.depth, b.depth});
         // raster - centre = (A + B t) / z(t) with z linear: the velocity (B z0 - A z') / z^2 keeps its
         // direction, and integrating it over the shutter gives the chord (B z0 - A z') T / (z_a z_b). So
-        // the path is its chord, and its speed, largest at the nearer end, is |chord| / T x z_far / z_near.
+        // the path is its chord, and its speed |chord| / T x z_a z_b / z^2; 1/z is affine in the distance
+        // u along the chord, so the square root of the speed is too. Only the part of the chord on the
+        // image counts (measure), and the speed is largest at that part's nearer end.
         const double chord = glm::length(b.raster - a.raster);
-        out.max_path_pixels = std::max(out.max_path_pixels, chord);
-        max_speed = std::max(max_speed, chord / duration_ * std::max(a.depth / b.depth, b.depth / a.depth));
+        const double root_a = std::sqrt(chord / duration_ * b.depth / a.depth), root_b = std::sqrt(chord / duration_ * a.depth / b.depth);
+        all_path = std::max(all_path, chord);
+        all_speed = std::max({all_speed, root_a * root_a, root_b * root_b});
+        if (const auto range = blendMeets(pointBox(a.raster), pointBox(b.raster), film_)) {
+            const auto [u0, u1] = *range;
+            out.max_path_pixels = std::max(out.max_path_pixels, chord * (u1 - u0));
+            for (const double u : {u0, u1}) max_speed = std::max(max_speed, std::pow((1.0 - u) * root_a + u * root_b, 2.0));
+            seen = true;
+        }
         if (k < 3) {
             o[k] = a.raster;
             c[k] = b.raster;
         }
         out.start += a.raster / double(vertices.size());
         out.end += b.raster / double(vertices.size());
+    }
+    // The fragment is within the hull of its ends' boxes. One no vertex of which is on the image but that
+    // may span it on the way (its box about the blend of its boxes at the ends) counts whole.
+    out.swept = at_open;
+    out.swept.expand(at_close.lo);
+    out.swept.expand(at_close.hi);
+    if (!seen && blendMeets(at_open, at_close, film_)) {
+        out.max_path_pixels = all_path;
+        max_speed = all_speed;
     }
     out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
     // The sweep's path is the homogeneous parabola through the positions at open, middle and close: for
@@ -189,45 +233,57 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         if (measureStraight(vertices, out)) return out;
         out = FragmentMotion{};
     }
-    double max_speed = 0.0, max_depth_rate = 0.0;
-    struct Positions {
-        std::vector<glm::dvec3> raster;  // raster x, y and depth
+    const std::size_t n = nodes_.size();
+    struct Scratch {
+        std::vector<ProjectedMotion> at;   // vertex-major: vertex k at node i is at[k * n + i]
+        std::vector<glm::dvec3> raster;    // one vertex's raster x, y and depth, nodes in front of the camera
+        std::vector<char> on_film;         // per node (onFilm)
     };
-    std::vector<glm::dvec3>& positions = threadScratch<Positions>().raster;
+    Scratch& scratch = threadScratch<Scratch>();
     std::array<glm::dvec2, 3> open{}, close{};
     std::size_t ends = 0;  // vertices with both end positions
     const bool one_triangle = std::all_of(vertices.begin(), vertices.end(), [&](const MeshPoint& v) {
         return v.object == vertices[0].object && v.triangle == vertices[0].triangle;
     });
     const std::vector<std::array<CameraRelative, 3>>* corners = one_triangle && !vertices.empty() ? cornersOf(vertices[0]) : nullptr;
-    // Node i's projection of a vertex (i == nodes_.size(): mid-shutter).
+    // Node i's projection of a vertex (i == n: mid-shutter).
     const auto motionAt = [&](std::size_t i, const MeshPoint& vertex) {
-        const MotionSnapshot& at = i < nodes_.size() ? nodes_[i].snapshot : middle_;
+        const MotionSnapshot& at = i < n ? nodes_[i].snapshot : middle_;
         return corners ? projectMotion(at, combine((*corners)[i], vertex.b)) : projectMotion(at, *scene_, vertex);
     };
-    for (const MeshPoint& vertex : vertices) {
-        double length = 0.0;
-        positions.clear();
-        for (std::size_t i = 0; i < nodes_.size(); ++i) {
-            const Node& node = nodes_[i];
-            const ProjectedMotion m = motionAt(i, vertex);
+    scratch.at.resize(vertices.size() * n);
+    double max_depth_rate = 0.0;
+    for (std::size_t k = 0; k < vertices.size(); ++k)
+        for (std::size_t i = 0; i < n; ++i) {
+            const ProjectedMotion& m = scratch.at[k * n + i] = motionAt(i, vertices[k]);
             if (m.point.behind) {
                 out.crosses_near = true;
                 continue;
             }
-            positions.push_back(glm::dvec3(m.point.raster, m.point.depth));
-            out.swept.expand(m.point.raster);
             out.min_depth = std::min(out.min_depth, m.point.depth);
             out.max_depth = std::max(out.max_depth, m.point.depth);
             max_depth_rate = std::max(max_depth_rate, std::abs(m.depth_rate));
-            if (node.weight == 0.0) continue;
+        }
+    // Off the image no pixel sees where a fragment is or how fast it goes: the swept box and the speeds
+    // are of the nodes where it is on the image and of where it crosses the image's edge between them.
+    const OnFilm film = onFilm(scratch.at, vertices.size(), scratch.on_film);
+    double film_speed = film.edge_speed;
+    out.swept = film.swept;
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+        double length = 0.0;
+        scratch.raster.clear();
+        for (std::size_t i = 0; i < n; ++i) {
+            const ProjectedMotion& m = scratch.at[k * n + i];
+            if (m.point.behind) continue;
+            scratch.raster.push_back(glm::dvec3(m.point.raster, m.point.depth));
+            if (!scratch.on_film[i] || nodes_[i].weight == 0.0) continue;
             const double speed = glm::length(m.raster_velocity);
-            length += node.weight * speed;
-            max_speed = std::max(max_speed, speed);
+            length += nodes_[i].weight * speed;
+            film_speed = std::max(film_speed, speed);
         }
         out.max_path_pixels = std::max(out.max_path_pixels, length);
-        if (positions.size() == nodes_.size() && duration_ > 0.0) {
-            const glm::dvec2 a(positions.front()), b(positions.back());
+        if (scratch.raster.size() == n && duration_ > 0.0) {
+            const glm::dvec2 a(scratch.raster.front()), b(scratch.raster.back());
             if (ends < 3) {
                 open[ends] = a;
                 close[ends] = b;
@@ -235,11 +291,12 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
             ++ends;
             out.start += a / double(vertices.size());
             out.end += b / double(vertices.size());
-            const ProjectedPoint mid = motionAt(nodes_.size(), vertex).point;
-            if (!mid.behind) out.parabola_deviation = std::max(out.parabola_deviation, parabolaDeviation(positions, mid));
+            const ProjectedPoint mid = motionAt(n, vertices[k]).point;
+            if (!mid.behind)
+                out.parabola_deviation = std::max(out.parabola_deviation, parabolaDeviation(scratch.raster, mid, scratch.on_film));
         }
     }
-    out.max_sweep_pixels = std::max(out.max_path_pixels, max_speed * duration_);
+    out.max_sweep_pixels = std::max(out.max_path_pixels, film_speed * duration_);
     if (ends == 3 && vertices.size() == 3) {
         affineMotion(open, close, out);
         sourceMap(vertices[0], out, corners);
@@ -247,23 +304,78 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
     if (out.crosses_near) {
         out.swept = RasterBounds::everything();
     } else {
-        out.swept.pad(max_speed * max_gap_);
+        out.swept.pad(film_speed * max_gap_);
         out.min_depth -= max_depth_rate * max_gap_;
         out.max_depth += max_depth_rate * max_gap_;
     }
     return out;
 }
 
-double ShutterPathSampler::parabolaDeviation(const std::vector<glm::dvec3>& positions, const ProjectedPoint& mid) const {
+ShutterPathSampler::OnFilm ShutterPathSampler::onFilm(const std::vector<ProjectedMotion>& at, std::size_t vertices,
+                                                      std::vector<char>& on_film) const {
+    const std::size_t n = nodes_.size();
+    on_film.assign(n, 0);
+    std::vector<RasterBounds>& box = threadScratch<std::vector<RasterBounds>>();
+    box.assign(n, RasterBounds{});
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t k = 0; k < vertices; ++k)
+            if (!at[k * n + i].point.behind) box[i].expand(at[k * n + i].point.raster);
+        on_film[i] = box[i].overlaps(film_) ? 1 : 0;
+    }
+    OnFilm out;
+    bool crossed = false;  // a vertex crosses the image between nodes
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+        bool touches = on_film[i] || on_film[i + 1];
+        for (std::size_t k = 0; k < vertices; ++k) {
+            const ProjectedMotion &a = at[k * n + i], &b = at[k * n + i + 1];
+            if (a.point.behind || b.point.behind || (film_.contains(a.point.raster) && film_.contains(b.point.raster))) continue;
+            // Between two nodes a vertex moves on a nearly straight line (exactly, for a camera and object
+            // that do not turn); it is on the image for the part [u0, u1] of that line inside it. On such
+            // a line inverse depth is affine in u, and speed goes as depth^-2: its square root is affine.
+            const auto range = blendMeets(pointBox(a.point.raster), pointBox(b.point.raster), film_);
+            if (!range) continue;
+            touches = crossed = true;
+            // At a key (and the shutter's ends) the velocity may belong to the next piece of motion: the
+            // speeds are taken inside the pieces (measure), so there the other node's stands for it.
+            const bool key_a = isBreakpoint(nodes_[i].snapshot.time), key_b = isBreakpoint(nodes_[i + 1].snapshot.time);
+            const double sa = std::sqrt(glm::length(a.raster_velocity)), sb = std::sqrt(glm::length(b.raster_velocity));
+            const double va = key_a ? sb : sa, vb = key_b ? sa : sb;
+            for (const double u : {range->first, range->second})
+                out.edge_speed = std::max(out.edge_speed, std::pow((1.0 - u) * va + u * vb, 2.0));
+        }
+        // A fragment no node or vertex shows on the image may still span it between two nodes (its box
+        // there about the blend of its boxes at both).
+        touches = touches || blendMeets(box[i], box[i + 1], film_).has_value();
+        if (!touches || box[i].empty() || box[i + 1].empty()) continue;
+        // Where it is on the image between the nodes: within both boxes' hull, and on the image.
+        RasterBounds hull = box[i];
+        hull.expand(box[i + 1].lo);
+        hull.expand(box[i + 1].hi);
+        out.swept.expand(glm::max(hull.lo, film_.lo));
+        out.swept.expand(glm::min(hull.hi, film_.hi));
+    }
+    if (n == 1 && on_film[0]) {  // an instant: its box, on the image
+        out.swept.expand(glm::max(box[0].lo, film_.lo));
+        out.swept.expand(glm::min(box[0].hi, film_.hi));
+    }
+    // Seen only spanning the image: every node counts, as without this rule.
+    if (!out.swept.empty() && !crossed && std::find(on_film.begin(), on_film.end(), 1) == on_film.end()) on_film.assign(n, 1);
+    return out;
+}
+
+double ShutterPathSampler::parabolaDeviation(const std::vector<glm::dvec3>& positions, const ProjectedPoint& mid,
+                                             const std::vector<char>& on_film) const {
     // What a one-interval sweep follows (SweepPath: the homogeneous parabola through the positions and
     // depths at open, mid-shutter and close, with the camera's turn taken out and put back), at u = s + 1/2.
     const glm::dvec2 a(positions.front()), b(positions.back());
     const SweepPath path = SweepPath::through({a, positions.front().z}, {mid.raster, mid.depth}, {b, positions.back().z},
                                               unturn_open_, unturn_close_);
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
-    double deviation = turns_.empty() && !std::isfinite(path.reach()) ? kInfinity : 0.0;
+    const bool seen = std::find(on_film.begin(), on_film.end(), 1) != on_film.end();
+    double deviation = seen && turns_.empty() && !std::isfinite(path.reach()) ? kInfinity : 0.0;
     const double t0 = nodes_.front().snapshot.time;
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        if (!on_film[i]) continue;
         const double s = (nodes_[i].snapshot.time - t0) / duration_ - 0.5;
         glm::dvec2 offset, stretch;
         path.place(s, turns_.empty() ? nullptr : &turns_[i], offset, stretch);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <cstdint>
@@ -18,8 +19,8 @@ namespace clipblur {
 
 // How one fragment (a convex polygon of surface points) moves over the shutter.
 struct FragmentMotion {
-    RasterBounds swept;                // conservative bound of every raster position the fragment takes
-    double max_path_pixels = 0.0;   // longest raster path of a vertex over the shutter
+    RasterBounds swept;                // conservative bound of every raster position the fragment takes on the image
+    double max_path_pixels = 0.0;   // longest raster path of a vertex over the shutter, on the image
     // Peak raster speed of any vertex times the shutter length: equal subframes of this many keep every
     // vertex within a pixel per step. It is never below max_path_pixels and equals it for uniform speed.
     double max_sweep_pixels = 0.0;
@@ -79,14 +80,17 @@ public:
     // the near depth are left out (the point is not on the image there).
     double pathLength(const MeshPoint& point) const;
 
-    // Path lengths, peak speeds and swept box of a fragment's vertices. Speeds are taken at the Gauss
-    // nodes, which lie strictly inside the pieces (at a key the velocity jumps, and at t1 it may already
-    // belong to motion after the shutter). The box holds every sampled position padded by (largest sampled
-    // speed) x (largest gap between samples): the exact path stays inside as long as the speed varies by
-    // less than a factor of two between neighbouring samples.
+    // Path lengths, peak speeds and swept box of a fragment's vertices, where it is on the image (onFilm:
+    // off it no pixel sees the fragment, which near the camera can move thousands of pixels per shutter
+    // there). Speeds are taken at the Gauss nodes, which lie strictly inside the pieces (at a key the
+    // velocity jumps, and at t1 it may already belong to motion after the shutter). The box holds every
+    // sampled position on the image padded by (largest sampled speed there) x (largest gap between
+    // samples): the exact path stays inside as long as the speed varies by less than a factor of two
+    // between neighbouring samples.
     FragmentMotion measure(std::span<const MeshPoint> vertices) const;
 
     const std::vector<double>& breakpoints() const { return breakpoints_; }  // t0, keys inside, t1
+    bool isBreakpoint(double t) const { return std::binary_search(breakpoints_.begin(), breakpoints_.end(), t); }
 
     // Whether every surface point of the object moves on a straight image line over the shutter, so that
     // measure takes its paths from their ends alone: one piece (no key inside), a camera that does not
@@ -101,7 +105,15 @@ private:
                    const std::vector<std::array<CameraRelative, 3>>* corners = nullptr) const;
     // A vertex's sampled positions' (raster, depth per node) largest distance from the path a sweep of
     // one interval follows through them and `mid` (FragmentMotion::parabola_deviation).
-    double parabolaDeviation(const std::vector<glm::dvec3>& positions, const ProjectedPoint& mid) const;
+    double parabolaDeviation(const std::vector<glm::dvec3>& positions, const ProjectedPoint& mid,
+                             const std::vector<char>& on_film) const;
+    // Per node, whether a fragment whose vertices are at `at` (vertex-major, nodes_.size() per vertex)
+    // is on the image (film_); and where it is on the image and how fast its vertices cross its edge.
+    struct OnFilm {
+        double edge_speed = 0.0;  // peak vertex speed where a vertex crosses the image's edge between nodes
+        RasterBounds swept;       // where on the image the fragment can be, unpadded
+    };
+    OnFilm onFilm(const std::vector<ProjectedMotion>& at, std::size_t vertices, std::vector<char>& on_film) const;
     // measure for vertices on straight paths (straight()); false when a vertex is behind the camera at
     // an end, which the sampled measure handles.
     bool measureStraight(std::span<const MeshPoint> vertices, FragmentMotion& out) const;
@@ -124,6 +136,7 @@ private:
     glm::dmat3 unturn_open_{1.0}, unturn_close_{1.0};
     double max_gap_ = 0.0;
     double duration_ = 0.0;
+    RasterBounds film_;            // the whole image, raster
     std::vector<char> straight_;  // per object (straight)
     std::uint64_t id_;             // unique per sampler: what a thread's cached corners belong to
 };

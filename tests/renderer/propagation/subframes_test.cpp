@@ -379,14 +379,38 @@ TEST(Subframes, CapIsHonouredAndFlagged) {
 
     Scene scene = testing::stillCameraScene();
     const Projection proj = projectionOf(scene);
-    scene.objects.push_back(slidingTriangle(proj, 10.0, 300.0));
+    // The corner starts 49 px right of the centre and stays on the 640 px image (what is off it does not count).
+    scene.objects.push_back(slidingTriangle(proj, 10.0, 250.0));
     const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
     const MeshPoint v{0, 0, {1, 0, 0}};
     const FragmentMotion fm = sampler.measure(std::span(&v, 1));
     const SubframePlan plan = planSubframes(std::span(&fm, 1), kWholeFilm, 128);
     EXPECT_EQ(plan.count, 128);
     EXPECT_TRUE(plan.capped);
-    EXPECT_NEAR(plan.max_path_pixels, 300.0, 1e-9);
+    EXPECT_NEAR(plan.max_path_pixels, 250.0, 1e-9);
+}
+
+TEST(Subframes, SpeedOffTheImageDoesNotCount) {
+    // A corner one unit off the axis in x and y comes from depth 10 to 0.5: its offset from the image
+    // centre is k (1, 1) / z and its speed k sqrt(2) |z'| / z^2, 16x faster at close (18,800 px per
+    // shutter) than where it leaves the 640 x 360 image, at z = k / 180 (the vertical half-height).
+    // Off the image no pixel sees it: the count follows the speed where it leaves.
+    Scene scene = testing::stillCameraScene();
+    const Projection proj = projectionOf(scene);
+    Object tri = testing::triangleObject({-1, -1, 10}, {1, -1, 10}, {0, 1, 10});
+    testing::addTransformKey(tri, 0.0, {0, 0, 0});
+    testing::addTransformKey(tri, 1.0, {0, 0, -9.5});
+    scene.objects.push_back(tri);
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const MeshPoint v{0, 0, {1, 0, 0}};
+    const FragmentMotion fm = sampler.measure(std::span(&v, 1));
+    const double k = proj.pixelsPerUnit(), leaves = k / 180.0;
+    const double at_edge = k * std::sqrt(2.0) * 9.5 / (leaves * leaves);
+    // Exact: on a line, the square root of the speed is affine in the distance along it (1/z is).
+    EXPECT_NEAR(fm.max_sweep_pixels, at_edge, 1e-9 * at_edge);
+    EXPECT_FALSE(fm.crosses_near);
+    // The path on the image: from 49 px off the centre in y to the edge, 180 px, times sqrt 2.
+    EXPECT_NEAR(fm.max_path_pixels, std::sqrt(2.0) * (180.0 - k / 10.0), 1e-9);
 }
 
 TEST(Subframes, PrintedEquation24LetsTheFastestVertexStrobe) {
@@ -432,8 +456,9 @@ TEST(Subframes, TimesAreShutterMidpointsWithEqualWeights) {
 }
 
 TEST(Subframes, SweptBoxHoldsDenselySampledPaths) {
-    // Property: every position of every vertex, sampled at 2001 times across the shutter, lies in the
-    // fragment's swept box. Fragments are random sub-triangles of random moving scenes.
+    // Property: every position on the image of every vertex and of points inside the fragment (its
+    // centroid, its edges' midpoints), sampled at 2001 times across the shutter, lies in the fragment's
+    // swept box. Fragments are random sub-triangles of random moving scenes.
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (std::uint64_t seed = 1; seed <= 10; ++seed) {
@@ -450,10 +475,14 @@ TEST(Subframes, SweptBoxHoldsDenselySampledPaths) {
             }
             const FragmentMotion fm = sampler.measure(verts);
             ASSERT_FALSE(fm.crosses_near);
+            std::vector<MeshPoint> points = verts;
+            points.push_back({obj, obj, (verts[0].b + verts[1].b + verts[2].b) / 3.0});
+            for (int j = 0; j < 3; ++j) points.push_back({obj, obj, 0.5 * (verts[j].b + verts[(j + 1) % 3].b)});
+            const RasterBounds film{{0.0, 0.0}, {double(proj.width), double(proj.height)}};
             for (const MotionSnapshot& s : dense) {
-                for (const MeshPoint& v : verts) {
+                for (const MeshPoint& v : points) {
                     const glm::dvec2 p = project(s, scene, v).raster;
-                    ASSERT_TRUE(fm.swept.overlaps(RasterBounds{p, p})) << "seed " << seed << " t " << s.time;
+                    if (film.contains(p)) ASSERT_TRUE(fm.swept.contains(p)) << "seed " << seed << " t " << s.time;
                 }
             }
         }
