@@ -111,8 +111,14 @@ inline double signedStretch(const glm::dmat2& map, int axis) {
 // weights sum to area(q) times the share of positions where the stretch is positive along both axes (a
 // surface turning edge-on and away is not there at the others). Axis-aligned rectangles (most fragments inside a surface are whole or partial
 // pixels) take a separable fast path. A template so that a caller summing into pixels does so directly.
+// With `clip`, only its cells are visited (the same weights there), and a position's polygon costs what
+// it covers of them: a fragment stretched huge near the camera plane, or passing far off the tile.
 template <class Add>
-void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add);
+void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, const PixelBounds& clip, Add&& add);
+template <class Add>
+void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add) {
+    forEachSweptCell(q, path, positions, kAllCells, add);
+}
 
 // The same, appended to `out`.
 void sweptFootprint(const ConvexPolygon& q, const SweepPath& path, int positions, std::vector<PixelWeight>& out);
@@ -127,12 +133,12 @@ bool axisAlignedRectangle(const ConvexPolygon& q);
 
 // forEachSweptCell with add(x, y, weight, position index).
 template <class Add>
-void sweptCellsIndexed(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add) {
+void sweptCellsIndexed(const ConvexPolygon& q, const SweepPath& path, int positions, const PixelBounds& clip, Add&& add) {
     if (q.degenerate() || q.n > kMaxStoredVertices) {
         if (!q.degenerate()) {  // more vertices than stored fragments have: cut it into stored-size pieces
             std::vector<ConvexPolygon> parts;
             splitToCapacity(q, kMaxStoredVertices, parts);
-            for (const ConvexPolygon& part : parts) sweptCellsIndexed(part, path, positions, add);
+            for (const ConvexPolygon& part : parts) sweptCellsIndexed(part, path, positions, clip, add);
         }
         return;
     }
@@ -141,6 +147,7 @@ void sweptCellsIndexed(const ConvexPolygon& q, const SweepPath& path, int positi
     // A stretch along the raster axes keeps an axis-aligned rectangle axis-aligned.
     if (axisAlignedRectangle(q)) {
         const RasterBounds box = q.bounds();
+        const glm::dvec2 clip_lo(clip.x0, clip.y0), clip_hi(clip.x1, clip.y1);
         for (int k = 0; k < m; ++k) {
             const double s = (k + 0.5) / m - 0.5;
             glm::dvec2 offset, stretch;
@@ -148,7 +155,10 @@ void sweptCellsIndexed(const ConvexPolygon& q, const SweepPath& path, int positi
             if (!(stretch.x > 0.0 && stretch.y > 0.0)) continue;  // edge-on or facing away
             const double share = scale * (1.0 + path.tilt * s);  // exactly scale without a curve
             const glm::dvec2 at = path.pivot + offset;
-            const glm::dvec2 lo = at + stretch * (box.lo - path.pivot), hi = at + stretch * (box.hi - path.pivot);
+            // Clamped to the clip, the overlaps with its cells are unchanged.
+            const glm::dvec2 lo = glm::max(at + stretch * (box.lo - path.pivot), clip_lo);
+            const glm::dvec2 hi = glm::min(at + stretch * (box.hi - path.pivot), clip_hi);
+            if (!(lo.x < hi.x && lo.y < hi.y)) continue;
             cellOverlaps(lo.y, hi.y, [&](int y, double h) {
                 cellOverlaps(lo.x, hi.x, [&](int x, double w) { add(x, y, w * h * share, k); });
             });
@@ -164,18 +174,18 @@ void sweptCellsIndexed(const ConvexPolygon& q, const SweepPath& path, int positi
         if (!(stretch.x > 0.0 && stretch.y > 0.0)) continue;
         const glm::dvec2 at = path.pivot + offset;
         for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
-        polygonCells(moved, scale * (1.0 + path.tilt * s), [&](int x, int y, double w) { add(x, y, w, k); });
+        polygonCells(moved, clip, scale * (1.0 + path.tilt * s), [&](int x, int y, double w) { add(x, y, w, k); });
     }
 }
 
 }  // namespace swept_detail
 
 template <class Add>
-void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, Add&& add) {
+void forEachSweptCell(const ConvexPolygon& q, const SweepPath& path, int positions, const PixelBounds& clip, Add&& add) {
     if constexpr (std::is_invocable_v<Add&, int, int, double, int>)
-        swept_detail::sweptCellsIndexed(q, path, positions, add);
+        swept_detail::sweptCellsIndexed(q, path, positions, clip, add);
     else
-        swept_detail::sweptCellsIndexed(q, path, positions, [&](int x, int y, double w, int) { add(x, y, w); });
+        swept_detail::sweptCellsIndexed(q, path, positions, clip, [&](int x, int y, double w, int) { add(x, y, w); });
 }
 
 }  // namespace clipblur

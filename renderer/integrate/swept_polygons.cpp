@@ -148,9 +148,8 @@ void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, std::s
     for (const SweptPolygon& p : swept) {
         const bool levels = out.track_error && p.positions == sweep.positions && p.positions >= 3;
         const glm::dvec4 value(p.colour, p.coverage ? 1.0 : 0.0);
-        // Cells beyond sweep.box are skipped: the plan bounds every path inside it.
-        forEachSweptCell(p.polygon, p.path, p.positions, [&](int x, int y, double w, int k) {
-            if (!out.box.contains(x, y)) return;
+        // Only cells of out.box are visited: the plan bounds every path inside sweep.box.
+        forEachSweptCell(p.polygon, p.path, p.positions, out.box, [&](int x, int y, double w, int k) {
             const std::size_t i = out.box.index(x, y);
             addSwept(out, i, w, p);
             if (levels) out.d3[i] += (w * rule.to3[static_cast<std::size_t>(k)]) * value;

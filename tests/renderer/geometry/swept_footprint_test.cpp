@@ -299,4 +299,59 @@ TEST(SweptFootprint, PositionsWhereTheSurfaceFacesAwayAreLeftOut) {
     }
 }
 
+// With a clip, forEachSweptCell visits only the clip's cells and gives each the weight the unclipped call
+// does: seeded random fragments stretched into polygons of up to 60 px (and axis-aligned rectangles,
+// the separable path), random straight paths with a stretch, random clips inside, across and outside.
+TEST(SweptFootprint, ClipVisitsOnlyItsCellsWithTheSameWeights) {
+    std::mt19937 rng(20261129);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int trial = 0; trial < 300; ++trial) {
+        ConvexPolygon q = randomFragment(rng, glm::dvec2(0.0));
+        if (trial % 3 == 0) {  // an axis-aligned rectangle
+            q.clear();
+            for (glm::dvec2 v : {glm::dvec2(0.2, 0.1), glm::dvec2(0.9, 0.1), glm::dvec2(0.9, 1.0), glm::dvec2(0.2, 1.0)}) q.push(v);
+        }
+        const double scale = 1.0 + 30.0 * (1.0 + u(rng));
+        for (int i = 0; i < q.n; ++i) q.v[i] = glm::dvec2(40.0, 30.0) + scale * q.v[i];
+        SweepPath path;
+        path.chord = 20.0 * glm::dvec2(u(rng), u(rng));
+        path.pivot = glm::dvec2(40.0 + 10.0 * u(rng), 30.0 + 10.0 * u(rng));
+        path.setStretch(glm::dvec2(1.0 + 0.5 * u(rng), 1.0), glm::dvec2(1.0, 1.0 + 0.5 * u(rng)));
+        const int x0 = static_cast<int>(std::floor(60.0 * (1.0 + u(rng)))), y0 = static_cast<int>(std::floor(40.0 * (1.0 + u(rng))));
+        const PixelBounds clip = PixelBounds::sized(x0, y0, 1 + static_cast<int>(20.0 * (1.0 + u(rng))), 1 + static_cast<int>(20.0 * (1.0 + u(rng))));
+        const int m = 1 + trial % 5;
+        Weights all, clipped;
+        forEachSweptCell(q, path, m, [&](int x, int y, double w) {
+            if (clip.contains(x, y)) all[{x, y}] += w;
+        });
+        forEachSweptCell(q, path, m, clip, [&](int x, int y, double w) {
+            EXPECT_TRUE(clip.contains(x, y)) << trial << " visited " << x << "," << y << " outside " << toString(clip);
+            clipped[{x, y}] += w;
+        });
+        ASSERT_EQ(clipped.size(), all.size()) << trial;
+        // The clip cuts once where the unclipped call cuts cell by cell: rounding on coordinates ~100.
+        for (const auto& [pixel, weight] : all) EXPECT_NEAR(clipped[pixel], weight, 1e-11) << trial;
+    }
+}
+
+// A fragment near the camera plane is stretched to millions of pixels at some positions. With a clip
+// (the tile's box) each position costs what it covers of the clip: a polygon far larger than a 16 x 12
+// clip covers it whole at every position, weight 1 per cell (the unclipped call would cut about 1e13
+// cells, so a regression hangs this test).
+TEST(SweptFootprint, HugePolygonCostsWhatItCoversOfTheClip) {
+    ConvexPolygon q;
+    for (glm::dvec2 v : {glm::dvec2(-3e6, -2e6), glm::dvec2(4e6, -1e6), glm::dvec2(1e6, 5e6)}) q.push(v);
+    q.close();
+    SweepPath path;
+    path.chord = glm::dvec2(7.0, -3.0);
+    const PixelBounds clip = PixelBounds::sized(100, 50, 16, 12);
+    for (int m : {1, 4}) {
+        Weights w;
+        forEachSweptCell(q, path, m, clip, [&](int x, int y, double weight) { w[{x, y}] += weight; });
+        ASSERT_EQ(w.size(), clip.area()) << m;
+        // Cuts at coordinates ~1e6 round at 1e-10 of a pixel.
+        for (const auto& [pixel, weight] : w) EXPECT_NEAR(weight, 1.0, 1e-9) << m;
+    }
+}
+
 }  // namespace clipblur
