@@ -56,6 +56,7 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
         return MeshPoint{f.object, f.triangle, f.bary[i % 3]};
     };
     std::vector<int> positions(static_cast<std::size_t>(count), 1);
+    const double farthest_bend = std::sqrt(0.5 * layout.reach / kBendTolerance);  // infinite reach: infinite
     const double h = (t1 - t0) / count;
     for (int k = 0; k < count; ++k) {
         const MotionSnapshot begin(scene, projection, t0 + k * h), middle(scene, projection, t0 + (k + 0.5) * h),
@@ -69,11 +70,11 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
                     const ProjectedPoint a = project(begin, scene, v), m = project(middle, scene, v), b = project(end, scene, v);
                     if (a.behind || m.behind || b.behind) continue;
                     if (layout.exact) {
-                        farthest = std::max(farthest, bendLength(a.raster, m.raster, b.raster));
+                        farthest = std::max(farthest, std::min(bendLength(a.raster, m.raster, b.raster), farthest_bend));
                         continue;
                     }
                     const SweepPath path = SweepPath::through({a.raster, a.depth}, {m.raster, m.depth}, {b.raster, b.depth});
-                    farthest = std::max(farthest, pathTravel(path));
+                    farthest = std::max(farthest, std::min(pathTravel(path), layout.reach));
                 }
                 return farthest;
             },
@@ -87,6 +88,13 @@ int sharedIntervals(std::span<const SubframePlan> tiles) {
     int intervals = 1;
     for (const SubframePlan& p : tiles) intervals = std::max(intervals, p.count);
     return intervals;
+}
+
+double largestReach(std::span<const SubframePlan> tiles) {
+    double reach = 0.0;
+    for (const SubframePlan& p : tiles)
+        if (p.count > 0) reach = std::max(reach, sweepInterval(PixelBounds(), p.max_sweep_pixels, p.count, PixelBounds()).reach);
+    return reach;
 }
 
 std::vector<IntervalTurns> turnsPerInterval(const Scene& scene, const Projection& projection, double t0, double t1,

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -65,13 +66,15 @@ struct SweepInterval {
 SweepInterval sweepInterval(const PixelBounds& tile, double max_sweep_pixels, int n, const PixelBounds& film);
 
 // How sweep positions are laid out: `intervals` equal intervals of [t0, t1], at most `spacing` pixels and
-// at most `max_positions` positions apart; `exact` for render.sweep_time exact.
+// at most `max_positions` positions apart; `exact` for render.sweep_time exact. `reach`: the largest reach
+// of a tile over an interval (largestReach); a fragment travelling farther is swept by no tile.
 struct SweepLayout {
     double t0 = 0.0, t1 = 1.0;
     int intervals = 1;
     double spacing = 1.0;
     int max_positions = 1;
     bool exact = false;
+    double reach = std::numeric_limits<double>::infinity();
 };
 
 // Sweep integration: the positions of each of the layout's equal intervals of [t0, t1], shared by every fragment
@@ -79,13 +82,16 @@ struct SweepLayout {
 // pixels between them during that interval (pathTravel: along the parabola through its positions at the
 // interval's ends and middle, as a swept fragment moves). An interval where things move slowly (the end of
 // a dolly away) gets fewer positions than one where they move fast. Vertices at or behind the camera plane
-// are left out (they are not swept, see SweepInterval::reach).
+// are left out (they are not swept, see SweepInterval::reach), and a vertex counts a travel of at most
+// `reach`: only what travels no farther is swept (a piece of a triangle reaching the camera plane, cut to
+// a pixel where it is on a tile), so the positions follow what is swept, not a vertex far off the image.
 // Exact sweep integrates each fragment exactly along the chords between positions, so they serve only to
 // follow how paths bend: a path whose chord over the interval strays by d pixels at the middle (its
 // sagitta: the middle position's distance from the ends' midpoint, which also sees a speed that changes
 // along a straight path) strays by d / n^2 with n chords. There an interval gets bendLength / spacing
 // positions over the vertices' largest bendLength: no chord strays more than kBendTolerance spacing^2
-// pixels, and a path that does not bend needs one position however far it travels.
+// pixels, and a path that does not bend needs one position however far it travels. A path that travels
+// at most `reach` strays at most reach / 2 from its chord, so bends count up to that.
 std::vector<int> sweepPositions(const Scene& scene, const Projection& projection, const FragmentLayers& layers,
                                 const SweepLayout& layout);
 
@@ -99,6 +105,10 @@ double bendLength(const glm::dvec2& a, const glm::dvec2& m, const glm::dvec2& b)
 // The intervals a segment's moving tiles share under sweep (planMotion gives them one count): the largest
 // tile count, at least 1.
 int sharedIntervals(std::span<const SubframePlan> tiles);
+
+// The largest reach (SweepInterval::reach) of a moving tile of the plan under sweep: sweepInterval's for
+// the tile's count.
+double largestReach(std::span<const SubframePlan> tiles);
 
 // A turning camera's turns over each of positions.size() equal intervals of [t0, t1], at that interval's
 // positions (intervalTurns).

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -85,6 +86,54 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
     const std::vector<int> positions = sweepPositions(
         scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 1000});
     EXPECT_EQ(positions[0], static_cast<int>(std::ceil(focal / 5.0 * 0.5)));
+}
+
+// A vertex just in front of the camera plane travels thousands of pixels, but no tile sweeps a fragment
+// that travels farther than its reach (SweepInterval::sweeps), so a vertex counts at most `reach`. Here
+// the two far vertices travel focal / 5 x 0.5 = 24.7 px and the near one (depth 0.05) 100x that: without
+// a reach it sets the count (2,470 positions), with a reach of 40 px the count is 40, and with 10 px,
+// which all three exceed, 10. Exact sweep: the same triangle coming 0.1 nearer bends the near vertex's
+// path; a path of travel at most R strays at most R / 2 from its chord, so bends count up to
+// sqrt(R / 2 / kBendTolerance): 16 positions for R = 8 (the far vertices' bends are under 2).
+TEST(SweepPositions, VertexTravelCountsUpToTheReach) {
+    Scene scene = stillCameraScene(640, 360, 40.0);
+    scene.objects.push_back(triangleObject({-1, -1, 5}, {1, -1, 5}, {0, 0.02, 0.05}));
+    addTransformKey(scene.objects[0], 0.0, {0, 0, 0});
+    addTransformKey(scene.objects[0], 1.0, {0.5, 0, 0});
+    const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
+    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
+    FragmentLayers layers;
+    layers.triangles = {&triangles, nullptr};
+    const double focal = 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
+    const auto count = [&](double reach) {
+        return sweepPositions(scene, projection, layers,
+                              {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 100000, .reach = reach})[0];
+    };
+    EXPECT_EQ(count(std::numeric_limits<double>::infinity()), static_cast<int>(std::ceil(focal / 0.05 * 0.5)));
+    EXPECT_EQ(count(40.0), 40);
+    EXPECT_EQ(count(10.0), 10);
+
+    Scene dolly = scene;
+    dolly.objects[0].transform.back().translate = glm::dvec3(0.5, 0.0, -0.04);
+    const auto exact = [&](double reach) {
+        return sweepPositions(dolly, projection, layers,
+                              {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 100000, .exact = true, .reach = reach})[0];
+    };
+    EXPECT_GT(exact(std::numeric_limits<double>::infinity()), 100);
+    EXPECT_EQ(exact(8.0), 16);
+}
+
+// The largest reach of a plan's tiles is sweepInterval's for each: 10 px over 4 re-clips reaches
+// 2 x 10 / 4 + 1 = 6 px, 3 px over one 7 px; a still tile (no re-clips) reaches nothing.
+TEST(IntervalLayout, LargestReachIsTheFarthestTiles) {
+    std::vector<SubframePlan> tiles(3);
+    tiles[0].count = 4;
+    tiles[0].max_sweep_pixels = 10.0;
+    tiles[1].count = 1;
+    tiles[1].max_sweep_pixels = 3.0;
+    tiles[2].count = 0;
+    tiles[2].max_sweep_pixels = 100.0;
+    EXPECT_DOUBLE_EQ(largestReach(tiles), 7.0);
 }
 
 // Exact sweep spaces positions by bend, not travel. The dolly away above: image speed falls as 1/depth^2
