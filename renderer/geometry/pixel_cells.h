@@ -72,78 +72,49 @@ inline const PixelBounds kAllCells = PixelBounds::corners(std::numeric_limits<in
 
 namespace cells_detail {
 
-// The cells [first, last] of [lo, hi] (one cell where lo = hi) that lie in [c0, c1); last < first when
-// none do. Clamped as doubles, so coordinates far beyond int's range (a vertex near the camera plane)
-// are never cast.
-struct CellSpan {
-    double first, last;  // in the clip
-    bool cut_below, cut_above;  // the polygon goes on past first and past last + 1
-};
-inline CellSpan cellSpan(double lo, double hi, int c0, int c1) {
-    const double all_first = std::floor(lo), all_last = std::max(all_first, std::ceil(hi) - 1.0);
+// Cuts p at the cell boundaries along `axis` (0: x, 1: y) within [c0, c1): once where it enters, then one
+// split per boundary; calls piece(c, part) for each cell c whose part has three or more vertices.
+// Coordinates are clamped as doubles before the cast, so a vertex far beyond int's range (near the camera
+// plane) is never cast.
+template <class Piece>
+void cutCells(const SmallPolygon& p, int axis, int c0, int c1, Piece&& piece) {
+    double lo = p.v[0][axis], hi = lo;
+    for (int i = 1; i < p.n; ++i) {
+        lo = std::min(lo, p.v[i][axis]);
+        hi = std::max(hi, p.v[i][axis]);
+    }
+    const double all_first = std::floor(lo), all_last = std::max(all_first, std::ceil(hi) - 1.0);  // one cell where lo = hi
     const double first = std::max(all_first, static_cast<double>(c0)), last = std::min(all_last, static_cast<double>(c1) - 1.0);
-    return {first, last, first > all_first, last < all_last};
-}
-
-// The cells y of column x of a polygon (already cut to that column), one split per cell boundary.
-template <class Add>
-void columnPieces(const SmallPolygon& col, int x, const PixelBounds& clip, Add&& add) {
-    double lo = col.v[0].y, hi = lo;
-    for (int i = 1; i < col.n; ++i) {
-        lo = std::min(lo, col.v[i].y);
-        hi = std::max(hi, col.v[i].y);
+    if (last < first) return;
+    const int f = static_cast<int>(first), l = static_cast<int>(last);
+    SmallPolygon rest[2], part, inside;
+    const SmallPolygon* ahead = &p;
+    if (first > all_first) {
+        splitAxis(p, axis, f, part, inside);
+        ahead = &inside;
     }
-    const CellSpan rows = cellSpan(lo, hi, clip.y0, clip.y1);
-    if (rows.last < rows.first) return;
-    const int y0 = static_cast<int>(rows.first), y1 = static_cast<int>(rows.last);
-    SmallPolygon cells[2], cell, inside;
-    const SmallPolygon* above = &col;
-    if (rows.cut_below) {
-        splitAxis(col, 1, y0, cell, inside);
-        above = &inside;
-    }
-    for (int y = y0; y <= y1; ++y) {
-        const SmallPolygon* c = above;
-        if (y < y1 || rows.cut_above) {
-            splitAxis(*above, 1, y + 1.0, cell, cells[y & 1]);
-            c = &cell;
-            above = &cells[y & 1];
+    for (int c = f; c <= l; ++c) {
+        const SmallPolygon* here = ahead;
+        if (c < l || last < all_last) {
+            splitAxis(*ahead, axis, c + 1.0, part, rest[c & 1]);
+            here = &part;
+            ahead = &rest[c & 1];
         }
-        if (c->n >= 3) add(x, y, *c);
+        if (here->n >= 3) piece(c, *here);
     }
 }
 
 }  // namespace cells_detail
 
-// Exact pixel pieces of a convex polygon in the cells of `clip`: cut where it leaves clip's columns, then
-// chopped into columns, each column over its own rows into cells, one split per cell boundary; calls
-// add(x, y, piece) for each piece with three or more vertices. Cells outside `clip` are never cut, so a
-// polygon far larger than the pixels wanted (a surface near the camera plane) costs what those cost.
+// Exact pixel pieces of a convex polygon in the cells of `clip`: chopped into columns, each column over its
+// own rows into cells, one split per cell boundary; calls add(x, y, piece) for each piece with three or
+// more vertices. Cells outside `clip` are never cut, so a polygon far larger than the pixels wanted (a
+// surface near the camera plane) costs what those cost.
 template <class Add>
 void polygonPieces(const SmallPolygon& p, const PixelBounds& clip, Add&& add) {
-    double lo = p.v[0].x, hi = lo;
-    for (int i = 1; i < p.n; ++i) {
-        lo = std::min(lo, p.v[i].x);
-        hi = std::max(hi, p.v[i].x);
-    }
-    const cells_detail::CellSpan columns = cells_detail::cellSpan(lo, hi, clip.x0, clip.x1);
-    if (columns.last < columns.first) return;
-    const int x0 = static_cast<int>(columns.first), x1 = static_cast<int>(columns.last);
-    SmallPolygon rest[2], column, inside;
-    const SmallPolygon* right = &p;
-    if (columns.cut_below) {
-        splitAxis(p, 0, x0, column, inside);
-        right = &inside;
-    }
-    for (int x = x0; x <= x1; ++x) {
-        const SmallPolygon* col = right;
-        if (x < x1 || columns.cut_above) {
-            splitAxis(*right, 0, x + 1.0, column, rest[x & 1]);
-            col = &column;
-            right = &rest[x & 1];
-        }
-        if (col->n >= 3) cells_detail::columnPieces(*col, x, clip, add);
-    }
+    cells_detail::cutCells(p, 0, clip.x0, clip.x1, [&](int x, const SmallPolygon& column) {
+        cells_detail::cutCells(column, 1, clip.y0, clip.y1, [&](int y, const SmallPolygon& cell) { add(x, y, cell); });
+    });
 }
 
 template <class Add>

@@ -37,6 +37,15 @@ int expectedPositions(const Scene& scene, const Projection& projection, double t
     return std::max(1, static_cast<int>(std::ceil(farthest / spacing)));
 }
 
+// The open layer of one fragment triangle: object 0's triangle 0, whole.
+struct WholeTriangle {
+    std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
+    FragmentLayers layers;
+    WholeTriangle() { layers.triangles = {&triangles, nullptr}; }
+    WholeTriangle(const WholeTriangle&) = delete;
+    WholeTriangle& operator=(const WholeTriangle&) = delete;
+};
+
 // A camera dollying away (depth doubles over the shutter) from a triangle.
 Scene dollyAwayScene() {
     Scene scene = stillCameraScene(640, 360, 40.0);
@@ -53,9 +62,8 @@ Scene dollyAwayScene() {
 TEST(SweepPositions, FollowEachIntervalsOwnMotion) {
     const Scene scene = dollyAwayScene();
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
-    FragmentLayers layers;
-    layers.triangles = {&triangles, nullptr};
+    const WholeTriangle whole;
+    const FragmentLayers& layers = whole.layers;
 
     constexpr int kIntervals = 6;
     constexpr double kSpacing = 0.75;
@@ -78,9 +86,8 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
     addTransformKey(scene.objects[0], 0.0, {0, 0, 0});
     addTransformKey(scene.objects[0], 1.0, {0.5, 0, 0});
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
-    FragmentLayers layers;
-    layers.triangles = {&triangles, nullptr};
+    const WholeTriangle whole;
+    const FragmentLayers& layers = whole.layers;
     // The two front vertices move 0.5 world units at depth 5: focal / 5 * 0.5 px, the same for both.
     const double focal = 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
     const std::vector<int> positions = sweepPositions(
@@ -101,9 +108,8 @@ TEST(SweepPositions, VertexTravelCountsUpToTheReach) {
     addTransformKey(scene.objects[0], 0.0, {0, 0, 0});
     addTransformKey(scene.objects[0], 1.0, {0.5, 0, 0});
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
-    FragmentLayers layers;
-    layers.triangles = {&triangles, nullptr};
+    const WholeTriangle whole;
+    const FragmentLayers& layers = whole.layers;
     const double focal = 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
     const auto count = [&](double reach) {
         return sweepPositions(scene, projection, layers,
@@ -142,9 +148,8 @@ TEST(IntervalLayout, LargestReachIsTheFarthestTiles) {
 TEST(SweepPositions, ExactFollowEachIntervalsOwnBend) {
     const Scene scene = dollyAwayScene();
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
-    FragmentLayers layers;
-    layers.triangles = {&triangles, nullptr};
+    const WholeTriangle whole;
+    const FragmentLayers& layers = whole.layers;
     constexpr int kIntervals = 6;
     constexpr double kSpacing = 0.1;
     const std::vector<int> positions = sweepPositions(
@@ -164,9 +169,8 @@ TEST(SweepPositions, ExactNeedOneWhereNothingBends) {
     scene.camera.keys.push_back({1.0, {4, 1, 0}, {0, 0, 1}, {0, 1, 0}});
     scene.objects.push_back(triangleObject({-1, -1, 5}, {1, -1, 5}, {0, 1, 7}));
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
-    const std::vector<FragmentTriangle> triangles{{0, 0, {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}}};
-    FragmentLayers layers;
-    layers.triangles = {&triangles, nullptr};
+    const WholeTriangle whole;
+    const FragmentLayers& layers = whole.layers;
     const std::vector<int> positions = sweepPositions(
         scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 0.1, .max_positions = 1000, .exact = true});
     EXPECT_EQ(positions[0], 1);
