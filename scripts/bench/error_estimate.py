@@ -31,6 +31,7 @@ Writes a markdown table to stdout and results.csv under --out.
     scripts/bench/error_estimate.py                       # every bench scene at 160x90
     scripts/bench/error_estimate.py --scenes table1_pan,propeller --spacings 4,1 --subframes 27
     scripts/bench/error_estimate.py --targets 1e-2,1e-3,1e-4 --refine 4
+    scripts/bench/error_estimate.py --targets 1e-2,1e-3 --random-seeds 1,2,3   # seeded random scenes
 """
 
 import argparse
@@ -41,6 +42,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import benchlib  # noqa: E402
+from random_scenes import write_scenes  # noqa: E402
 
 
 def scene_configs(names):
@@ -57,6 +59,14 @@ def scene_configs(names):
         if missing:
             raise SystemExit(f"unknown scenes: {', '.join(missing)} (known: {', '.join(configs)})")
         return {n: configs[n] for n in wanted}
+    return configs
+
+
+def chosen_configs(args, folder):
+    """The named bench scenes and the seeded random ones (--random-seeds: only those unless --scenes)."""
+    seeds = [int(s) for s in args.random_seeds.split(",")] if args.random_seeds else []
+    configs = scene_configs(args.scenes) if args.scenes or not seeds else {}
+    configs.update(write_scenes(seeds, folder / "random"))
     return configs
 
 
@@ -130,6 +140,9 @@ def run_targets(clipblur, name, config, args, folder):
         rows.append({"scene": name, "target": target, "spacing": values.get("target_sweep_spacing", math.nan),
                      "estimated": values["estimated_error"], "seconds": stats["seconds"]["total"],
                      "e_total": benchlib.image_error(reference, image)["rmse"], "ref_check": ref_check})
+        r = rows[-1]  # as it comes: a long run shows its rows before the table
+        print(f"{name} {target:g}: e_total / target {r['e_total'] / target:.2f}, {r['seconds']:.2f} s", file=sys.stderr,
+              flush=True)
     return rows
 
 
@@ -159,6 +172,8 @@ def main():
                     help="also measure against references with --refine x the re-clips")
     ap.add_argument("--targets", help="render.error_target values: measure the target mode instead")
     ap.add_argument("--reference-spacing", type=float, default=0.05, help="px, for --targets")
+    ap.add_argument("--random-seeds", help="comma-separated seeds: also (or, without --scenes, only) the "
+                    "scenes scripts/bench/random_scenes.py writes for them, under <out>/random")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", default=str(benchlib.REPO / "build" / "bench" / "error_estimate"))
     ap.add_argument("--clipblur", help="path of the clipblur binary (default build/clipblur or $CLIPBLUR)")
@@ -171,7 +186,7 @@ def main():
     rows = []
     if args.targets:
         args.targets = [float(t) for t in args.targets.split(",")]
-        for name, config in scene_configs(args.scenes).items():
+        for name, config in chosen_configs(args, folder).items():
             try:
                 rows += run_targets(clipblur, name, config, args, folder / "renders")
             except benchlib.BenchError as e:
@@ -182,7 +197,7 @@ def main():
             w.writerows(rows)
         print_targets(rows, args)
         return
-    for name, config in scene_configs(args.scenes).items():
+    for name, config in chosen_configs(args, folder).items():
         try:
             rows += run_scene(clipblur, name, config, args, folder / "renders")
         except benchlib.BenchError as e:
