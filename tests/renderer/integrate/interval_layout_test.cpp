@@ -46,6 +46,21 @@ struct WholeTriangle {
     WholeTriangle& operator=(const WholeTriangle&) = delete;
 };
 
+// A still camera and a triangle with two vertices at depth 5 and the third at `third`, sliding 0.5
+// world units along x over the shutter.
+Scene slidingTriangleScene(const glm::dvec3& third) {
+    Scene scene = stillCameraScene(640, 360, 40.0);
+    scene.objects.push_back(triangleObject({-1, -1, 5}, {1, -1, 5}, third));
+    addTransformKey(scene.objects[0], 0.0, {0, 0, 0});
+    addTransformKey(scene.objects[0], 1.0, {0.5, 0, 0});
+    return scene;
+}
+
+// The pinhole's focal length in pixels: a world length l across the view at depth z spans focal l / z px.
+double focalPixels(const Scene& scene) {
+    return 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
+}
+
 // A camera dollying away (depth doubles over the shutter) from a triangle.
 Scene dollyAwayScene() {
     Scene scene = stillCameraScene(640, 360, 40.0);
@@ -81,15 +96,12 @@ TEST(SweepPositions, FollowEachIntervalsOwnMotion) {
 // Vertices behind the camera plane at any of an interval's three times are not swept, so they must not
 // set the count: a triangle reaching through the camera plane counts only its vertices in front.
 TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
-    Scene scene = stillCameraScene(640, 360, 40.0);
-    scene.objects.push_back(triangleObject({-1, -1, 5}, {1, -1, 5}, {0, 1, -3}));
-    addTransformKey(scene.objects[0], 0.0, {0, 0, 0});
-    addTransformKey(scene.objects[0], 1.0, {0.5, 0, 0});
+    const Scene scene = slidingTriangleScene({0, 1, -3});
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
     const WholeTriangle whole;
     const FragmentLayers& layers = whole.layers;
     // The two front vertices move 0.5 world units at depth 5: focal / 5 * 0.5 px, the same for both.
-    const double focal = 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
+    const double focal = focalPixels(scene);
     const std::vector<int> positions = sweepPositions(
         scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 1000});
     EXPECT_EQ(positions[0], static_cast<int>(std::ceil(focal / 5.0 * 0.5)));
@@ -99,18 +111,15 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
 // that travels farther than its reach (SweepInterval::sweeps), so a vertex counts at most `reach`. Here
 // the two far vertices travel focal / 5 x 0.5 = 24.7 px and the near one (depth 0.05) 100x that: without
 // a reach it sets the count (2,470 positions), with a reach of 40 px the count is 40, and with 10 px,
-// which all three exceed, 10. Exact sweep: the same triangle coming 0.1 nearer bends the near vertex's
-// path; a path of travel at most R strays at most R / 2 from its chord, so bends count up to
+// which all three exceed, 10. Exact sweep: the same triangle also coming 0.04 nearer (the near vertex
+// from depth 0.05 to 0.01) bends the near vertex's path; a path of travel at most R strays at most R / 2 from its chord, so bends count up to
 // sqrt(R / 2 / kBendTolerance): 16 positions for R = 8 (the far vertices' bends are under 2).
 TEST(SweepPositions, VertexTravelCountsUpToTheReach) {
-    Scene scene = stillCameraScene(640, 360, 40.0);
-    scene.objects.push_back(triangleObject({-1, -1, 5}, {1, -1, 5}, {0, 0.02, 0.05}));
-    addTransformKey(scene.objects[0], 0.0, {0, 0, 0});
-    addTransformKey(scene.objects[0], 1.0, {0.5, 0, 0});
+    const Scene scene = slidingTriangleScene({0, 0.02, 0.05});
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
     const WholeTriangle whole;
     const FragmentLayers& layers = whole.layers;
-    const double focal = 0.5 * scene.film.height / std::tan(0.5 * glm::radians(scene.camera.vfov_degrees));
+    const double focal = focalPixels(scene);
     const auto count = [&](double reach) {
         return sweepPositions(scene, projection, layers,
                               {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 100000, .reach = reach})[0];
