@@ -126,20 +126,27 @@ def run_targets(clipblur, name, config, args, folder):
     base.update({"render.method": "clipped", "render.time_integration": "sweep"})
     stem = name.replace("/", "_")
     fine = {"render.sweep_spacing": args.reference_spacing, "render.max_subframes": 4096}
-    reference = folder / stem / "target_reference.exr"
-    benchlib.render(clipblur, config, dict(base, **fine), reference, args.threads)
-    check = folder / stem / "target_reference_check.exr"
-    benchlib.render(clipblur, config, {**base, **fine, "render.sweep_spacing": 2 * args.reference_spacing}, check,
-                    args.threads)
+    # References are plain renders (no target): another run's at the same size may serve (--references-from).
+    refs = Path(args.references_from) / "renders" / stem if args.references_from else folder / stem
+    reference, check = refs / "target_reference.exr", refs / "target_reference_check.exr"
+    if args.references_from:
+        if not (reference.exists() and check.exists()):
+            raise benchlib.BenchError(f"no reference under {refs}")
+    else:
+        benchlib.render(clipblur, config, dict(base, **fine), reference, args.threads)
+        benchlib.render(clipblur, config, {**base, **fine, "render.sweep_spacing": 2 * args.reference_spacing},
+                        check, args.threads)
     ref_check = benchlib.image_error(reference, check)["rmse"]
     rows = []
     for target in args.targets:
         image = folder / stem / f"target_{target:g}.exr"
         stats = benchlib.render(clipblur, config, dict(base, **{"render.error_target": target}), image, args.threads)
-        values = stats["values"]
+        values, counts = stats["values"], stats.get("counts", {})
         rows.append({"scene": name, "target": target, "spacing": values.get("target_sweep_spacing", math.nan),
                      "estimated": values["estimated_error"], "seconds": stats["seconds"]["total"],
-                     "e_total": benchlib.image_error(reference, image)["rmse"], "ref_check": ref_check})
+                     "e_total": benchlib.image_error(reference, image)["rmse"], "ref_check": ref_check,
+                     "renders": counts.get("target_renders"), "bisections": counts.get("target_bisections"),
+                     "pilot_kept": counts.get("target_pilot_kept")})
         r = rows[-1]  # as it comes: a long run shows its rows before the table
         print(f"{name} {target:g}: e_total / target {r['e_total'] / target:.2f}, {r['seconds']:.2f} s", file=sys.stderr,
               flush=True)
@@ -174,6 +181,8 @@ def main():
     ap.add_argument("--reference-spacing", type=float, default=0.05, help="px, for --targets")
     ap.add_argument("--random-seeds", help="comma-separated seeds: also (or, without --scenes, only) the "
                     "scenes scripts/bench/random_scenes.py writes for them, under <out>/random")
+    ap.add_argument("--references-from", help="with --targets: reuse the references of an earlier --out at the "
+                    "same size and reference spacing instead of rendering them")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", default=str(benchlib.REPO / "build" / "bench" / "error_estimate"))
     ap.add_argument("--clipblur", help="path of the clipblur binary (default build/clipblur or $CLIPBLUR)")
