@@ -19,6 +19,7 @@ struct ErrorTargetStats {
     double reached_error = 0.0;  // what the choice was judged by: against the pilot, or the estimate
     bool against_pilot = false;  // the render was well coarser than the pilot and measured against it
     bool pilot_kept = false;     // the coarser renders missed the target: the pilot is the result
+    long long bisections = 0;    // renders bisecting between one under the target and one over
 
     template <class Fields>
     void fields(Fields& f) const {
@@ -31,6 +32,7 @@ struct ErrorTargetStats {
         if (subframes > 0) f.count("subframes", subframes);
         f.value(against_pilot ? "error_against_pilot" : "estimated_error", reached_error);
         f.count("pilot_kept", pilot_kept ? 1 : 0);
+        f.count("bisections", bisections);
     }
 };
 

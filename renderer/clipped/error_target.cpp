@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "renderer/clipped/clipped_renderer.h"
@@ -197,6 +198,110 @@ void checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet,
     choice = {third, std::move(result), std::hypot(s.estimated_error, reclip2 * c2 / c3)};
 }
 
+// The renders that choose after the pilot, each of the whole film, judged and counted. Those judged
+// against the pilot bracket the setting sought: the coarsest within 4/3 of the target, the finest over.
+class Search {
+  public:
+    Search(const Tuning& tuning, int frame, const RenderCallbacks& shown, const Pilot& pilot)
+        : renders(pilot.renders), tuning_(tuning), frame_(frame), shown_(shown), pilot_(pilot),
+          target_(tuning.job.render.error_target) {}
+
+    int renders = 0, bisections = 0;  // renders: the pilot's too
+
+    bool measured(const RenderJob& j) const { return tuning_.intervalOf(j) >= kMeasuredRatio * pilot_.interval; }
+    bool over(double reached) const { return reached > target_ * 4.0 / 3.0; }
+    bool within(double reached) const { return !over(reached) && reached >= target_ * 0.75; }
+
+    // A render coarser than the pilot is judged against the pilot image: the two error fields are nearly
+    // independent, so the difference is sqrt(e^2 + e_pilot^2), within 1.2x of the render's own e when the
+    // pilot's is under 2/3 of it (order >= 1 at 1.5x the interval). Its own estimate falls 1.3-3x short
+    // at coarse intervals (docs/performance.md). Error both share (the pilot's re-clips) is not seen.
+    Choice render(const RenderJob& job) {
+        RenderResult result = renderClipped(job, frame_, shown_);
+        ++renders;
+        const bool against_pilot = measured(job);
+        const double reached = against_pilot ? rmsDifference(pilot_.render.image, result.image) : result.stats.clipped().estimated_error;
+        Choice choice{job, std::move(result), reached};
+        const double interval = tuning_.intervalOf(job);
+        if (against_pilot && over(reached)) over_ = std::min(over_, interval);
+        if (against_pilot && !over(reached) && interval > under_) {
+            under_ = interval;
+            best_ = choice;
+        }
+        return choice;
+    }
+
+    bool correct(Choice& choice);
+
+    // Where the error is no power of the interval (a staircase, a plateau: docs/performance.md, seeded
+    // random scenes) the model's corrections can step over the target's setting. Between the coarsest
+    // render judged within 4/3 of the target (the pilot before any) and the finest over it, bisection in
+    // log interval finds it: up to kBisections renders, until one lands within 0.75 .. 4/3 of the target.
+    // A midpoint too near the pilot to be judged against it is moved out to kMeasuredRatio of its interval.
+    void bisect() {
+        const double judged = kMeasuredRatio * pilot_.interval;
+        for (int k = 0; k < kBisections && over_ < kNone; ++k) {
+            const RenderJob mid = tuning_.at(std::max(std::sqrt(std::max(under_, pilot_.interval) * over_), judged));
+            const double interval = tuning_.intervalOf(mid);
+            if (!measured(mid) || interval <= under_ || interval >= over_) break;
+            ++bisections;
+            if (within(render(mid).reached)) break;
+        }
+    }
+
+    // The coarsest render judged within 4/3 of the target against the pilot, if any.
+    std::optional<Choice>& best() { return best_; }
+
+  private:
+    static constexpr int kBisections = 3;
+    static constexpr double kNone = std::numeric_limits<double>::infinity();
+    const Tuning& tuning_;
+    int frame_;
+    const RenderCallbacks& shown_;
+    const Pilot& pilot_;
+    double target_;
+    double under_ = 0.0, over_ = kNone;
+    std::optional<Choice> best_;
+};
+
+// Corrections where the model missed by more than 4/3: the order measured between the anchor and this
+// render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
+// than the pilot (renders are dear there), two where it is measured against it (they are cheap).
+// A correction that did the work of the render before it (one sweep position per interval at every
+// coarser spacing, as on the facade of many/building_dolly) shows a plateau: the setting no longer
+// sets the work between the two. Under the target no coarser setting changes anything, so the
+// corrections stop. Over it a finer one does: the order from the anchor to the plateau's error (now
+// known at the finer of the two settings) carries it on once more. Returns whether the pilot, made
+// already, is the answer where bisection finds none: where that still misses by more than 4/3, where
+// the pilot has no estimate and a correction would leave the judgement against it (within
+// kMeasuredRatio of the pilot's setting, or finer: nothing there could be judged), and where a render
+// judged against the pilot is still twice the target while the pilot's own estimate meets it (the
+// estimate sees time sampling alone, and a pilot refined until it had one may owe it to re-clips capped
+// at max_subframes).
+bool Search::correct(Choice& choice) {
+    ClippedStats previous = pilot_.render.stats.clipped();
+    bool plateau = false;
+    for (int k = 0; k < (measured(choice.job) ? 2 : 1); ++k) {
+        const double interval = tuning_.intervalOf(choice.job);
+        if (sameWork(previous, choice.result.stats.clipped())) {
+            plateau = k > 0;  // the first render repeating the pilot's work is no plateau of corrections
+            if (!plateau || !over(choice.reached)) break;
+        }
+        if (!(choice.reached > 0.0 && pilot_.anchor_error > 0.0) || within(choice.reached) ||
+            std::abs(std::log(interval / pilot_.anchor_interval)) <= 1e-6)
+            break;
+        const double order =
+            std::clamp(std::log(choice.reached / pilot_.anchor_error) / std::log(interval / pilot_.anchor_interval), 1.0, 3.0);
+        const RenderJob corrected = tuning_.at(interval * std::pow(target_ / choice.reached, 1.0 / order));
+        if (tuning_.intervalOf(corrected) == interval) break;
+        if (pilot_.estimate <= 0.0 && choice.reached > target_ && measured(choice.job) && !measured(corrected)) return true;
+        previous = choice.result.stats.clipped();
+        choice = render(corrected);
+    }
+    const bool far_over = choice.reached > 2.0 * target_ && pilot_.estimate > 0.0 && pilot_.estimate <= target_;
+    return measured(choice.job) && ((plateau && over(choice.reached)) || far_over);
+}
+
 }  // namespace
 
 double rmsDifference(const Image& fine, const Image& image) {
@@ -232,75 +337,24 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     Pilot pilot = runPilot(tuning, frame, quiet);
     const double pilot_seconds = secondsSince(start);
     const double target = job.render.error_target;
-    const auto measured = [&](const RenderJob& j) { return tuning.intervalOf(j) >= kMeasuredRatio * pilot.interval; };
-    // A render coarser than the pilot is judged against the pilot image: the two error fields are nearly
-    // independent, so the difference is sqrt(e^2 + e_pilot^2), within 1.2x of the render's own e when the
-    // pilot's is under 2/3 of it (order >= 1 at 1.5x the interval). Its own estimate falls 1.3-3x short
-    // at coarse intervals (docs/performance.md). Error both share (the pilot's re-clips) is not seen.
-    const auto errorOf = [&](const RenderJob& j, const RenderResult& r) {
-        return measured(j) ? rmsDifference(pilot.render.image, r.image) : r.stats.clipped().estimated_error;
-    };
-    Choice choice{.job = tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error, target,
-                                                    pilot.coarser_order > 0.0 ? pilot.coarser_order : tuning.coarserOrder())),
-                  .result = {},
-                  .reached = pilot.anchor_error};
-    int renders = pilot.renders;
-    if (pilot.answer) {
-        choice.job = tuning.at(pilot.anchor_interval);
-        choice.result = std::move(*pilot.answer);
-    } else {
-        choice.result = renderClipped(choice.job, frame, shown);
-        ++renders;
-        choice.reached = errorOf(choice.job, choice.result);
-    }
-    ClippedStats previous = pilot.render.stats.clipped();
-    // A correction that did the work of the render before it (one sweep position per interval at every
-    // coarser spacing, as on the facade of many/building_dolly) shows a plateau: the setting no longer
-    // sets the work between the two. Under the target no coarser setting changes anything, so the
-    // corrections stop. Over it a finer one does: the order from the anchor to the plateau's error (now
-    // known at the finer of the two settings) carries it on once more. Where that still misses by more
-    // than 4/3, the pilot, made already, is the answer. So it is where the pilot has no estimate and the
-    // correction would leave the judgement against it (within kMeasuredRatio of the pilot's setting, or
-    // finer): nothing there could be judged.
-    bool keep_pilot = false, plateau = false;
-    // Corrections where the model missed by more than 4/3: the order measured between the anchor and this
-    // render (kept within [1, 3]) carries this render's error to the target. One where the render is finer
-    // than the pilot (renders are dear there), two where it is measured against it (they are cheap).
-    for (int k = 0; k < (measured(choice.job) ? 2 : 1) && !pilot.answer; ++k) {
-        const double interval = tuning.intervalOf(choice.job);
-        if (sameWork(previous, choice.result.stats.clipped())) {
-            plateau = k > 0;  // the first render repeating the pilot's work is no plateau of corrections
-            if (!plateau || choice.reached <= target * 4.0 / 3.0) break;
+    Search search(tuning, frame, shown, pilot);
+    const double coarser_order = pilot.coarser_order > 0.0 ? pilot.coarser_order : tuning.coarserOrder();
+    Choice choice = pilot.answer ? Choice{tuning.at(pilot.anchor_interval), std::move(*pilot.answer), pilot.anchor_error}
+                                 : search.render(tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error,
+                                                                            target, coarser_order)));
+    bool keep_pilot = !pilot.answer && search.correct(choice);
+    if (!pilot.answer && search.measured(choice.job) && !search.within(choice.reached)) {
+        search.bisect();
+        if (search.best()) {
+            choice = std::move(*search.best());
+            keep_pilot = false;
         }
-        if (!(choice.reached > 0.0 && pilot.anchor_error > 0.0) || (choice.reached <= target * 4.0 / 3.0 && choice.reached >= target * 0.75) ||
-            std::abs(std::log(interval / pilot.anchor_interval)) <= 1e-6)
-            break;
-        const double order = std::clamp(std::log(choice.reached / pilot.anchor_error) / std::log(interval / pilot.anchor_interval), 1.0, 3.0);
-        const RenderJob corrected = tuning.at(interval * std::pow(target / choice.reached, 1.0 / order));
-        if (tuning.intervalOf(corrected) == interval) break;
-        if (pilot.estimate <= 0.0 && choice.reached > target && measured(choice.job) && !measured(corrected)) {
-            keep_pilot = true;
-            break;
-        }
-        choice.job = corrected;
-        previous = choice.result.stats.clipped();
-        choice.result = renderClipped(choice.job, frame, shown);
-        ++renders;
-        choice.reached = errorOf(choice.job, choice.result);
     }
-    keep_pilot = keep_pilot || (plateau && measured(choice.job) && choice.reached > target * 4.0 / 3.0);
-    // A render judged against the pilot still twice the target when the corrections stop, where the
-    // pilot's own estimate meets it: the model misled (the estimate sees time sampling alone, and a pilot
-    // refined until it had one may owe it to re-clips capped at max_subframes). The pilot is the answer.
-    keep_pilot = keep_pilot || (measured(choice.job) && choice.reached > 2.0 * target && pilot.estimate > 0.0 && pilot.estimate <= target);
-    if (keep_pilot) {
-        choice.job = tuning.at(pilot.interval);
-        choice.result = std::move(pilot.render);
-        choice.reached = pilot.estimate;
-    }
+    if (keep_pilot) choice = {tuning.at(pilot.interval), std::move(pilot.render), pilot.estimate};
     // A render judged by its own estimate has re-clip error the estimate does not see; one judged against
     // the pilot has it but for the pilot's share, and the pilot was judged by the estimate alone.
-    const bool reclips_unseen = tuning.sweep && !measured(choice.job);
+    const bool reclips_unseen = tuning.sweep && !search.measured(choice.job);
+    int& renders = search.renders;
     if (reclips_unseen && !pilot.answer && !keep_pilot) checkReclips(tuning, frame, quiet, choice, renders);
     if (job.render.window) {
         RenderJob shard = choice.job;
@@ -317,8 +371,9 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
                                     .reclip_spacing = tuning.sweep ? choice.job.render.reclip_spacing : 0.0,
                                     .subframes = tuning.sweep ? 0 : choice.job.render.subframes,
                                     .reached_error = choice.reached,
-                                    .against_pilot = measured(choice.job),
-                                    .pilot_kept = keep_pilot};
+                                    .against_pilot = search.measured(choice.job),
+                                    .pilot_kept = keep_pilot,
+                                    .bisections = search.bisections};
     return choice.result;
 }
 

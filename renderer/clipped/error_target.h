@@ -24,10 +24,14 @@ namespace clipblur {
 // render). A render at an interval at least 1.5x the pilot's is judged instead by its RMS difference from
 // the pilot image (the pilot is the finer solution) and corrected up to twice; a correction that does the
 // work of the render before it (a plateau) is carried on finer where it is over the target, and ends the
-// corrections where it is under. Every render that chooses is
-// of the whole film, so every shard of a frame chooses alike; a shard then renders its window at the
-// chosen setting. Sweep's automatic re-clips are spaced by the spacing too where it is over a pixel, so a
-// render coarser than the pilot is judged with its re-clip error; the pilot's own is not seen. A sweep
+// corrections where it is under. Where the corrections end on a render judged against the pilot outside
+// 0.75 .. 4/3 of the target, the setting is bisected in log interval (up to three renders) between the
+// coarsest render judged within 4/3 of it (the pilot before any) and the finest over it, and the coarsest
+// within 4/3 is the answer; where there is none, the pilot is where the corrections ended on a plateau or
+// twice over the target, else the render over it. Every render that chooses is of the whole film, so
+// every shard of a frame chooses alike; a shard then renders its window at the chosen setting. Sweep's
+// automatic re-clips are spaced by the spacing too where it is over a pixel, so a render coarser than the
+// pilot is judged with its re-clip error; the pilot's own is not seen. A sweep
 // render judged by its own estimate (which sees sweep positions, not re-clips) is checked against one
 // with re-clips at half the spacing (render.reclip_spacing): their difference, less both estimates in
 // quadrature, is the change in re-clip error, taken to fall as the re-clip count. The finer render is the
