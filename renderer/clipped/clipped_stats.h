@@ -20,6 +20,7 @@ struct ErrorTargetStats {
     bool against_pilot = false;  // the render was well coarser than the pilot and measured against it
     bool pilot_kept = false;     // the coarser renders missed the target: the pilot is the result
     long long bisections = 0;    // renders bisecting between one under the target and one over
+    double finer_pilot = 0.0;    // the interval of a second pilot, where the target was finer than the first's
 
     template <class Fields>
     void fields(Fields& f) const {
@@ -33,6 +34,7 @@ struct ErrorTargetStats {
         f.value(against_pilot ? "error_against_pilot" : "estimated_error", reached_error);
         f.count("pilot_kept", pilot_kept ? 1 : 0);
         f.count("bisections", bisections);
+        if (finer_pilot > 0.0) f.value("finer_pilot", finer_pilot);
     }
 };
 

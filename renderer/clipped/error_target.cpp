@@ -73,6 +73,7 @@ struct Pilot {
     double coarser_order = 0.0;  // > 0: measured between the anchor and a coarser probe (anchorOnRefinement)
     int renders = 0;
     std::optional<RenderResult> answer;  // a probe that is already the result
+    bool second = false;  // finerPilot's: corrections stay where it judges them, and it is the answer over
 };
 
 // A sweep pilot with no estimate (every interval has fewer than 3 positions) against a render kProbeRatio
@@ -166,8 +167,9 @@ double reclipSpacing(const RenderJob& job) {
 // quadrature) and the change in re-clip error. That error falls about as the re-clip count c (what one
 // surface hides of another moves by the re-clip spacing), so E(c1) - E(c2) = E(c2) (c2 / c1 - 1). Where
 // the finer render still misses by more than 4/3, the re-clips are refined once more, to what the time
-// error leaves of the target, by the count's measured response to the spacing.
-void checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Choice& choice, int& renders) {
+// error leaves of the target, by the count's measured response to the spacing. Returns whether the re-clip
+// error was over the target (the re-clips were refined).
+bool checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Choice& choice, int& renders) {
     const double target = tuning.job.render.error_target;
     const ClippedStats& first = choice.result.stats.clipped();
     RenderJob finer = choice.job;
@@ -175,17 +177,17 @@ void checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet,
     RenderResult second = renderClipped(finer, frame, quiet);
     ++renders;
     const double c1 = static_cast<double>(first.subframes_total), c2 = static_cast<double>(second.stats.clipped().subframes_total);
-    if (!(c2 > c1 && c1 > 0.0)) return;  // the re-clips do not follow the spacing here: nothing to see
+    if (!(c2 > c1 && c1 > 0.0)) return false;  // the re-clips do not follow the spacing here: nothing to see
     const double e1 = first.estimated_error, e2 = second.stats.clipped().estimated_error;
     const double d = rmsDifference(second.image, choice.result.image);
     const double reclip2 = std::sqrt(std::max(0.0, d * d - e1 * e1 - e2 * e2)) / (c2 / c1 - 1.0);
     const double total1 = std::hypot(e1, reclip2 * c2 / c1), total2 = std::hypot(e2, reclip2);
     if (total1 <= target * 4.0 / 3.0) {
         choice.reached = total1;
-        return;
+        return false;
     }
     choice = {finer, std::move(second), total2};
-    if (total2 <= target * 4.0 / 3.0) return;
+    if (total2 <= target * 4.0 / 3.0) return true;
     const double budget = std::sqrt(std::max(target * target - e2 * e2, 0.25 * target * target));
     const double response = std::log(c2 / c1) / std::log(2.0);  // count ~ spacing^-response
     RenderJob third = finer;
@@ -196,6 +198,26 @@ void checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet,
     const ClippedStats& s = result.stats.clipped();
     const double c3 = std::max(1.0, static_cast<double>(s.subframes_total));
     choice = {third, std::move(result), std::hypot(s.estimated_error, reclip2 * c2 / c3)};
+    return true;
+}
+
+// A target finer than the pilot can judge: its render is judged by its own estimate, 0.3 .. 3x off there
+// (coincident, fast_motion, seeded random scenes: docs/performance.md). A second pilot at half that
+// render's interval judges it against an image instead, and its corrections down to 3/4 of it. The model
+// is anchored at the first pilot by its difference from the second: sqrt(e1^2 + e2^2), within 1.2x of e1
+// at order 1 and more. None where the setting cannot go finer (max_subframes, the spacing's floor).
+std::optional<Pilot> finerPilot(const Tuning& tuning, int frame, const RenderCallbacks& quiet, const Pilot& first, double interval) {
+    const RenderJob job = tuning.at(interval / 2.0);
+    if (tuning.intervalOf(job) * kMeasuredRatio > interval) return std::nullopt;
+    Pilot pilot;
+    pilot.render = renderClipped(job, frame, quiet);
+    pilot.renders = 1;
+    pilot.interval = tuning.intervalOf(job);
+    pilot.estimate = pilot.render.stats.clipped().estimated_error;
+    pilot.anchor_interval = first.interval;
+    pilot.anchor_error = rmsDifference(pilot.render.image, first.render.image);
+    pilot.second = true;
+    return pilot;
 }
 
 // The renders that choose after the pilot, each of the whole film, judged and counted. Those judged
@@ -219,6 +241,10 @@ class Search {
     Choice render(const RenderJob& job) {
         RenderResult result = renderClipped(job, frame_, shown_);
         ++renders;
+        return judge(job, std::move(result));
+    }
+
+    Choice judge(const RenderJob& job, RenderResult result) {
         const bool against_pilot = measured(job);
         const double reached = against_pilot ? rmsDifference(pilot_.render.image, result.image) : result.stats.clipped().estimated_error;
         Choice choice{job, std::move(result), reached};
@@ -232,6 +258,17 @@ class Search {
     }
 
     bool correct(Choice& choice);
+
+    // The corrections, then bisection where they end outside 0.75 .. 4/3 of the target against the pilot;
+    // the coarsest render within 4/3 replaces `choice`. Returns whether the pilot is the answer (correct).
+    bool settle(Choice& choice) {
+        const bool keep_pilot = correct(choice);
+        if (!measured(choice.job) || within(choice.reached)) return keep_pilot;
+        bisect();
+        if (!best_) return keep_pilot || (pilot_.second && over(choice.reached));
+        choice = std::move(*best_);
+        return false;
+    }
 
     // Where the error is no power of the interval (a staircase, a plateau: docs/performance.md, seeded
     // random scenes) the model's corrections can step over the target's setting. Between the coarsest
@@ -248,9 +285,6 @@ class Search {
             if (within(render(mid).reached)) break;
         }
     }
-
-    // The coarsest render judged within 4/3 of the target against the pilot, if any.
-    std::optional<Choice>& best() { return best_; }
 
   private:
     static constexpr int kBisections = 3;
@@ -292,7 +326,8 @@ bool Search::correct(Choice& choice) {
             break;
         const double order =
             std::clamp(std::log(choice.reached / pilot_.anchor_error) / std::log(interval / pilot_.anchor_interval), 1.0, 3.0);
-        const RenderJob corrected = tuning_.at(interval * std::pow(target_ / choice.reached, 1.0 / order));
+        const double floor = pilot_.second ? kMeasuredRatio * pilot_.interval : 0.0;
+        const RenderJob corrected = tuning_.at(std::max(floor, interval * std::pow(target_ / choice.reached, 1.0 / order)));
         if (tuning_.intervalOf(corrected) == interval) break;
         if (pilot_.estimate <= 0.0 && choice.reached > target_ && measured(choice.job) && !measured(corrected)) return true;
         previous = choice.result.stats.clipped();
@@ -337,43 +372,50 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     Pilot pilot = runPilot(tuning, frame, quiet);
     const double pilot_seconds = secondsSince(start);
     const double target = job.render.error_target;
-    Search search(tuning, frame, shown, pilot);
+    std::optional<Search> search;
+    search.emplace(tuning, frame, shown, pilot);
     const double coarser_order = pilot.coarser_order > 0.0 ? pilot.coarser_order : tuning.coarserOrder();
     Choice choice = pilot.answer ? Choice{tuning.at(pilot.anchor_interval), std::move(*pilot.answer), pilot.anchor_error}
-                                 : search.render(tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error,
+                                 : search->render(tuning.at(spacingForTarget(pilot.anchor_interval, pilot.anchor_error,
                                                                             target, coarser_order)));
-    bool keep_pilot = !pilot.answer && search.correct(choice);
-    if (!pilot.answer && search.measured(choice.job) && !search.within(choice.reached)) {
-        search.bisect();
-        if (search.best()) {
-            choice = std::move(*search.best());
-            keep_pilot = false;
-        }
+    bool keep_pilot = !pilot.answer && search->settle(choice);
+    int bisections = search->bisections;
+    // A render judged by its own estimate has re-clip error the estimate does not see (checkReclips).
+    // Where that is under the target, the time error, which the estimate sees 0.3 .. 3x off, sets the
+    // error: a second pilot judges it. Where re-clips set it, their check has judged them and the
+    // re-clips were refined; a pilot at a finer spacing would share their error and not see it.
+    std::optional<Pilot> finer;
+    if (!pilot.answer && !keep_pilot && !search->measured(choice.job) &&
+        !(tuning.sweep && checkReclips(tuning, frame, quiet, choice, search->renders)))
+        finer = finerPilot(tuning, frame, quiet, pilot, tuning.intervalOf(choice.job));
+    if (finer) {
+        finer->renders += search->renders;
+        search.emplace(tuning, frame, shown, *finer);
+        choice = search->judge(choice.job, std::move(choice.result));
+        keep_pilot = search->settle(choice);
+        bisections += search->bisections;
     }
-    if (keep_pilot) choice = {tuning.at(pilot.interval), std::move(pilot.render), pilot.estimate};
-    // A render judged by its own estimate has re-clip error the estimate does not see; one judged against
-    // the pilot has it but for the pilot's share, and the pilot was judged by the estimate alone.
-    const bool reclips_unseen = tuning.sweep && !search.measured(choice.job);
-    int& renders = search.renders;
-    if (reclips_unseen && !pilot.answer && !keep_pilot) checkReclips(tuning, frame, quiet, choice, renders);
+    Pilot& last = finer ? *finer : pilot;
+    if (keep_pilot) choice = {tuning.at(last.interval), std::move(last.render), last.estimate};
     if (job.render.window) {
         RenderJob shard = choice.job;
         shard.render.window = job.render.window;
         choice.result = renderClipped(shard, frame, callbacks);
-        ++renders;
+        ++search->renders;
     }
     ClippedStats& stats = std::get<ClippedStats>(choice.result.stats.method);
     stats.target = ErrorTargetStats{.error_target = target,
                                     .pilot_estimated_error = pilot.estimate,
                                     .pilot_seconds = pilot_seconds,
-                                    .renders = renders,
+                                    .renders = search->renders,
                                     .sweep_spacing = tuning.sweep ? choice.job.render.sweep_spacing : 0.0,
                                     .reclip_spacing = tuning.sweep ? choice.job.render.reclip_spacing : 0.0,
                                     .subframes = tuning.sweep ? 0 : choice.job.render.subframes,
                                     .reached_error = choice.reached,
-                                    .against_pilot = search.measured(choice.job),
+                                    .against_pilot = search->measured(choice.job),
                                     .pilot_kept = keep_pilot,
-                                    .bisections = search.bisections};
+                                    .bisections = bisections,
+                                    .finer_pilot = finer ? finer->interval : 0.0};
     return choice.result;
 }
 

@@ -36,7 +36,11 @@ namespace clipblur {
 // with re-clips at half the spacing (render.reclip_spacing): their difference, less both estimates in
 // quadrature, is the change in re-clip error, taken to fall as the re-clip count. The finer render is the
 // answer where the first misses by more than 4/3, and one more refines the re-clips to what the time
-// error leaves of the target where that misses too.
+// error leaves of the target where that misses too. Where the check finds the re-clip error within the
+// target, the time error sets it, and the estimate sees that 0.3 .. 3x off: a second pilot at half the
+// render's interval judges the render against its image, and the search above runs again from it, its
+// corrections kept where it judges them (1.5x its interval or coarser); where they end over the target,
+// the second pilot is the answer.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval

@@ -204,10 +204,12 @@ TEST(ErrorTarget, SpacingFollowsOrderTwoBelowAndOneAbove) {
     EXPECT_DOUBLE_EQ(spacingForTarget(1.0, 0.0, 1e-3), 1.0) << "no estimate: the pilot's setting stays";
 }
 
-// render.error_target on the translating quad, sweep and point subframes: the exact error of what it
-// renders within the estimate's own spread on this phase-coherent scene (TimeError above: 4x either way
-// per setting) of the target. Measured: 0.27 .. 1.84 (docs/performance.md has the bench scenes).
-TEST(ErrorTarget, TranslatingQuadMeetsTheTargetWithinTheEstimatesSpread) {
+// render.error_target on the translating quad, sweep and point subframes, at targets finer than the
+// pilot's error: the exact error of what it renders within the 0.5 .. 1.5 of the target. The
+// render's own estimate is 4x off either way on this phase-coherent scene (TimeError above), so a render
+// finer than the pilot is judged against a second pilot at half its interval. Judged by the estimate
+// they were 0.27 .. 1.84 (five of six outside 0.5 .. 1.5); measured now 0.90 .. 1.04.
+TEST(ErrorTarget, TargetsFinerThanThePilotAreJudgedAgainstAFinerPilot) {
     for (const double target : {1e-3, 3e-4, 1e-4}) {
         for (const bool sweep : {true, false}) {
             RenderJob job = squareFilmJob();
@@ -215,8 +217,8 @@ TEST(ErrorTarget, TranslatingQuadMeetsTheTargetWithinTheEstimatesSpread) {
             job.render.error_target = target;
             job.render.time_integration = sweep ? TimeIntegration::Sweep : TimeIntegration::Subframes;
             const Measured m = measure(job);
-            EXPECT_GT(m.true_error, 0.25 * target) << target << (sweep ? " sweep" : " subframes");
-            EXPECT_LT(m.true_error, 4.0 * target) << target << (sweep ? " sweep" : " subframes");
+            EXPECT_GT(m.true_error, 0.5 * target) << target << (sweep ? " sweep" : " subframes");
+            EXPECT_LT(m.true_error, 1.5 * target) << target << (sweep ? " sweep" : " subframes");
         }
     }
 }
