@@ -21,6 +21,7 @@ struct ErrorTargetStats {
     bool pilot_kept = false;     // the coarser renders missed the target: the pilot is the result
     long long bisections = 0;    // renders bisecting between one under the target and one over
     double finer_pilot = 0.0;    // the interval of a second pilot, where the target was finer than the first's
+    long long max_subframes = 0;  // the re-clip cap, where capped tiles' error made the target raise it
 
     template <class Fields>
     void fields(Fields& f) const {
@@ -35,6 +36,7 @@ struct ErrorTargetStats {
         f.count("pilot_kept", pilot_kept ? 1 : 0);
         f.count("bisections", bisections);
         if (finer_pilot > 0.0) f.value("finer_pilot", finer_pilot);
+        if (max_subframes > 0) f.count("max_subframes", max_subframes);
     }
 };
 

@@ -40,7 +40,9 @@ namespace clipblur {
 // target, the time error sets it, and the estimate sees that 0.3 .. 3x off: a second pilot at half the
 // render's interval judges the render against its image, and the search above runs again from it, its
 // corrections kept where it judges them (1.5x its interval or coarser); where they end over the target,
-// the second pilot is the answer.
+// the second pilot is the answer. Last, where the answer has tiles whose re-clips max_subframes caps
+// (every render that chose had the cap, so none saw that error), a render with the cap doubled measures
+// it, and the cap is doubled (up to 4096) until the answer fits within 4/3 of the target beside it.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval

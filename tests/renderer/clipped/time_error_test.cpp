@@ -449,6 +449,23 @@ TEST(ErrorTarget, StaircaseErrorMeetsEveryTargetByBisection) {
     EXPECT_GT(bisected, 0);
 }
 
+// Quads passing each other with re-clips capped at 4 per tile: every render that chooses, the pilots too,
+// has the cap, so the error it leaves is seen by none (before raiseCap: 8.5x, 25x and 85x the target,
+// reported as 0). A render with the cap doubled measures it, and the cap is raised until the choice fits:
+// within the 0.5 .. 1.5 of the target against 2048 point subframes (measured 0.66, 0.56, 1.09).
+TEST(ErrorTarget, ErrorOfCappedReclipsIsMeasuredAndTheCapRaised) {
+    PassingQuads scene = passingQuads(0.7, 0.3);
+    scene.job.render.max_subframes = 4;
+    for (const double target : {3e-3, 1e-3, 3e-4}) {
+        scene.job.render.error_target = target;
+        const RenderResult r = renderFrame(scene.job, 0);
+        EXPECT_GT(r.stats.clipped().target->max_subframes, 4) << target;
+        const double error = rmsDifference(scene.reference.image, r.image);
+        EXPECT_GT(error, 0.5 * target) << target;
+        EXPECT_LT(error, 1.5 * target) << target;
+    }
+}
+
 // Shards of one frame choose one setting: every render that chooses is of the whole film. A window over
 // the quad and one beside it (nothing there, so its own error would be 0) must both get the whole film's
 // spacing, and their pixels the whole film's bits. The target is one the quad's first render misses, so
