@@ -30,7 +30,7 @@ namespace clipblur {
 // within 4/3 is the answer; where there is none, the pilot is where the corrections ended on a plateau or
 // twice over the target, else the render over it. Every render that chooses is of the whole film, so
 // every shard of a frame chooses alike; a shard then renders its window at the chosen setting. Sweep's
-// automatic re-clips are spaced by the spacing too where it is over a pixel, so a render coarser than the
+// automatic re-clips are spaced by the spacing too (finer than a pixel as well), so a render coarser than the
 // pilot is judged with its re-clip error; the pilot's own is not seen. A sweep
 // render judged by its own estimate (which sees sweep positions, not re-clips) is checked against one
 // with re-clips at half the spacing (render.reclip_spacing): their difference, less both estimates in
