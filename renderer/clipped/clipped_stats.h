@@ -22,6 +22,7 @@ struct ErrorTargetStats {
     long long bisections = 0;    // renders bisecting between one under the target and one over
     double finer_pilot = 0.0;    // the interval of a second pilot, where the target was finer than the first's
     long long max_subframes = 0;  // the re-clip cap, where capped tiles' error made the target raise it
+    long long max_segments = 0;   // the segment cap, where a target far above the answer's error lowered it
 
     template <class Fields>
     void fields(Fields& f) const {
@@ -37,6 +38,7 @@ struct ErrorTargetStats {
         f.count("bisections", bisections);
         if (finer_pilot > 0.0) f.value("finer_pilot", finer_pilot);
         if (max_subframes > 0) f.count("max_subframes", max_subframes);
+        if (max_segments > 0) f.count("max_segments", max_segments);
     }
 };
 

@@ -227,6 +227,50 @@ void raiseCap(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Cho
     }
 }
 
+// Each shutter segment (one per kAutoSegmentTurnDegrees of turn) adds two fragment sets and at least one
+// re-clip per tile, so where the spacing's work has reached that floor, coarser spacings cost the same
+// (shot_plain at 160x90: every spacing from 34 px up does 3 segments, 45 re-clips, 7e-4 from the
+// reference) and a target far above the answer's error can only be met by fewer segments. Where the
+// answer is under 3/4 of the target and the segments are auto, render.max_segments caps their count (the
+// auto rule's deep tiles still keep what a longer segment hides at both ends). A render with fewer is
+// judged against the answer, the finer solution: the error it adds is their difference d, taken as
+// independent of the answer's own, so hypot(reached, d). The count is set from the error at the fewest
+// segments judged within 4/3 of the target, at order 2 in the count until two renders measure it; up to
+// kSegmentRenders renders, and the fewest within 4/3 is the answer.
+void fewerSegments(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Choice& choice, int& renders) {
+    constexpr int kSegmentRenders = 3;
+    const double target = tuning.job.render.error_target;
+    const long long n = choice.result.stats.clipped().segments;
+    if (tuning.job.render.segments != 0 || n < 2 || !(choice.reached < 0.75 * target)) return;
+    Choice base = std::move(choice);
+    std::optional<Choice> fewest;
+    long long over = 0;  // the most segments judged over 4/3 of the target
+    double order = 2.0;
+    for (int k = 0; k < kSegmentRenders; ++k) {
+        const Choice& within = fewest ? *fewest : base;
+        const long long count = within.result.stats.clipped().segments;
+        const double wanted = static_cast<double>(count) * std::pow(std::max(within.reached, 1e-12) / target, 1.0 / order);
+        const long long m = std::max(over + 1, static_cast<long long>(std::ceil(wanted - 1e-9)));
+        if (m >= count) break;
+        RenderJob job = base.job;
+        job.render.max_segments = static_cast<int>(m);
+        RenderResult result = renderClipped(job, frame, quiet);
+        ++renders;
+        const long long got = result.stats.clipped().segments;
+        if (got >= count) break;  // the cap did not lower the count (a shutter curve's pieces)
+        const double reached = std::hypot(base.reached, rmsDifference(base.result.image, result.image));
+        if (reached > target * 4.0 / 3.0) {
+            over = std::max(over, got);
+            continue;
+        }
+        if (reached > base.reached && base.reached > 0.0)
+            order = std::clamp(std::log(reached / base.reached) / std::log(static_cast<double>(n) / got), 1.0, 3.0);
+        fewest = Choice{job, std::move(result), reached};
+        if (reached >= 0.75 * target) break;
+    }
+    choice = fewest ? std::move(*fewest) : std::move(base);
+}
+
 // A target finer than the pilot can judge: its render is judged by its own estimate, 0.3 .. 3x off there
 // (coincident, fast_motion, seeded random scenes: docs/performance.md). A second pilot at half that
 // render's interval judges it against an image instead, and its corrections down to 3/4 of it. The model
@@ -423,6 +467,7 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     }
     Pilot& last = finer ? *finer : pilot;
     if (keep_pilot) choice = {tuning.at(last.interval), std::move(last.render), last.estimate};
+    fewerSegments(tuning, frame, quiet, choice, search->renders);
     raiseCap(tuning, frame, quiet, choice, search->renders);
     if (job.render.window) {
         RenderJob shard = choice.job;
@@ -444,7 +489,9 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
                                     .bisections = bisections,
                                     .finer_pilot = finer ? finer->interval : 0.0,
                                     .max_subframes = choice.job.render.max_subframes != job.render.max_subframes
-                                                         ? choice.job.render.max_subframes : 0};
+                                                         ? choice.job.render.max_subframes : 0,
+                                    .max_segments = choice.job.render.max_segments != job.render.max_segments
+                                                        ? choice.job.render.max_segments : 0};
     return choice.result;
 }
 

@@ -42,7 +42,10 @@ namespace clipblur {
 // corrections kept where it judges them (1.5x its interval or coarser); where they end over the target,
 // the second pilot is the answer. Last, where the answer has tiles whose re-clips max_subframes caps
 // (every render that chose had the cap, so none saw that error), a render with the cap doubled measures
-// it, and the cap is doubled (up to 4096) until the answer fits within 4/3 of the target beside it.
+// it, and the cap is doubled (up to 4096) until the answer fits within 4/3 of the target beside it. Before
+// that, where the answer is under 3/4 of the target with auto segments, fewer segments are tried
+// (max_segments), judged against the answer, and the fewest within 4/3 kept: each costs two fragment sets
+// and a re-clip per tile, which no coarser spacing removes.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval
