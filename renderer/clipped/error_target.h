@@ -46,6 +46,9 @@ namespace clipblur {
 // that, where the answer is under 3/4 of the target with auto segments, fewer segments are tried
 // (max_segments), judged against the answer, and the fewest within 4/3 kept: each costs two fragment sets
 // and a re-clip per tile, which no coarser spacing removes.
+// The first sweep pilot is the finer solution renders are judged against, so where max_subframes caps
+// its re-clips the cap is doubled for the whole search until it caps none (up to 4096) before anything
+// is judged.
 RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCallbacks& callbacks);
 
 // The setting that reaches `target` from a pilot's estimate `estimate` at `setting` (an interval
