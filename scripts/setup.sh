@@ -9,6 +9,7 @@ packages=(
   libglm-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  valgrind  # the perf gate counts instructions under callgrind
 )
 if [ "${CLIPBLUR_FUZZ:-0}" = 1 ]; then
   packages+=(clang libclang-rt-14-dev)

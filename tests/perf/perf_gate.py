@@ -2,37 +2,37 @@
 """Performance regression gate.
 
 Renders tests/perf/gate_scene.yaml with the clipped method (point subframes and sweep integration)
-and with a stochastic baseline, alternating, several times, then each many-object bench scene
-(configs/bench/many/, made after the tuning) once with sweep integration and automatic re-clips, once
-more with `render.sweep_time: exact`, and once with the default `time_integration: auto`, and checks
-against tests/perf/thresholds.json:
-  - the RATIOS min(clipped CPU seconds) / min(stochastic CPU seconds) and the same for sweep. CPU
-    seconds are the render's own (stats `seconds.cpu`, getrusage around the frame, process start-up
-    excluded), so a neighbour that competes for the cores stretches wall clock but hardly moves them.
-    Every render of one gate run is pinned to the same CPU: on these virtual machines one core can run
-    30 % slower than the other for minutes (a busy sibling on the host), which alone moved single
-    renders by that much. The baseline's sample count makes its run about as long as the clipped ones,
-    so fixed costs weigh alike; the minimum of the repeats is the least disturbed. The limit is the
-    committed ratio times a slack below 1.5, so a 1.5x slowdown fails. Ratios between Embree's SIMD
-    traversal and the clipped scalar code differ between CPU models, so each model has its own
-    committed ratio;
+and with the stochastic method, then each many-object bench scene (configs/bench/many/, made after the
+tuning) once with sweep integration and automatic re-clips, once more with `render.sweep_time: exact`,
+and once with the default `time_integration: auto`, and checks against tests/perf/thresholds.json:
+  - INSTRUCTIONS: each of the three gate methods is rendered once more, single-threaded, under valgrind's
+    callgrind, counting only the instructions executed inside `renderFrame` (process start-up, job
+    loading and image writing excluded). Another process on the cores, a slow or a shared CPU do not
+    move that count (repeats agree to about 1e-5), so the gate holds under any load and on any CPU model
+    that runs Embree's AVX2 kernels (valgrind reports no AVX-512). The limit is the committed count
+    times a slack below 1.5, so work that makes a method 1.5x slower fails. What it cannot see: a change
+    that costs cache misses or stalls without executing more instructions;
   - EXACT noise-free counts from the stats (subframes, fragments, candidates, rays), which change
-    only when the algorithm does, and must not differ between repeats. The many-object scenes are
-    gated by their counts only (re-clips, positions, fragments: where a wrong re-clip rule shows as
-    a 10x count, as it did before 3da2aca); their CPU seconds are printed.
+    only when the algorithm does, and must not differ between the two native repeats. The many-object
+    scenes are gated by their counts only (re-clips, positions, fragments: where a wrong re-clip rule
+    shows as a 10x count, as it did before 3da2aca).
+CPU seconds (stats `seconds.cpu`) of the native renders are printed, not gated: they move with the load.
 
-    tests/perf/perf_gate.py --clipblur build/clipblur                # short mode (CI, < 1 min)
+    tests/perf/perf_gate.py --clipblur build/clipblur                # short mode (CI, about 1 min)
     tests/perf/perf_gate.py --clipblur build/clipblur --mode full    # also writes a JSON record
-    tests/perf/perf_gate.py --clipblur build/clipblur --update       # commit this CPU model's ratios and the counts
+    tests/perf/perf_gate.py --clipblur build/clipblur --update       # commit the instructions and the counts
 
 Exit codes: 0 pass, 1 a gate failed, 2 the gate could not run.
 """
 
 import argparse
+import concurrent.futures
 import datetime
 import json
 import os
 import platform
+import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -43,12 +43,14 @@ REPO = HERE.parents[1]
 SCENE = HERE / "gate_scene.yaml"
 THRESHOLDS = HERE / "thresholds.json"
 
-# `samples` is the stochastic baseline's: chosen so that its run takes about as long as the clipped
-# ones (between point subframes and sweep in CPU seconds), not for its image.
+# Native renders at width x height give the counts; the instruction renders run under callgrind at about
+# 40x the native time, so at a quarter of the pixels and with fewer stochastic samples (about 1.1, 1.8 and
+# 0.15 G instructions in short mode: 25, 32 and 5 s of one core; the gate takes about a minute on 2 cores).
 MODES = {
-    "short": {"width": 64, "height": 36, "repeats": 5, "samples": 1024},
-    "full": {"width": 160, "height": 90, "repeats": 5, "samples": 1024},
+    "short": {"width": 64, "height": 36, "samples": 1024, "instr_width": 32, "instr_height": 18, "instr_samples": 128},
+    "full": {"width": 160, "height": 90, "samples": 1024, "instr_width": 64, "instr_height": 36, "instr_samples": 256},
 }
+REPEATS = 2  # native renders per gate method: their counts must agree
 
 # Counts that depend only on the scene and the algorithm, not on timing or thread count.
 EXACT_COUNTS = {
@@ -74,71 +76,90 @@ AUTO_COUNTS = MANY_COUNTS + ["segments_points", "segments_sweep"]
 METHOD_SETTINGS = {"clipped": ["render.method=clipped", "render.time_integration=subframes"],
                    "sweep": ["render.method=clipped", "render.time_integration=sweep"],
                    "stochastic": ["render.method=stochastic"]}
-# How the many-object scenes are rendered: not part of the timed alternation above. "exact" is sweep with
-# render.sweep_time exact, gated under "many-exact/<name>" by the same counts as sweep.
+# How the many-object scenes are rendered. "exact" is sweep with render.sweep_time exact, gated under
+# "many-exact/<name>" by the same counts as sweep.
 MANY_METHODS = {"sweep": METHOD_SETTINGS["sweep"], "exact": METHOD_SETTINGS["sweep"] + ["render.sweep_time=exact"],
                 "auto": ["render.method=clipped"]}
 
-# The committed ratio limit is the measured ratio times this. Below 1.5, so that a 1.5x slowdown of
-# the clipped code fails; above the spread of CPU-second ratios between runs under load (docs/performance.md).
-DEFAULT_SLACK = 1.3
-# On a CPU model with no committed ratio the limit is the committed ratio times this: another model's
-# SIMD width alone moves the Embree baseline against scalar code by tens of percent, so such a run can
-# catch only gross regressions, and says so.
-FOREIGN_CPU_SLACK = 2.0
+# The instruction limit is the committed count times this. Below 1.5, so that a 1.5x slowdown of any
+# gated method fails; above what a Debian point release of the compiler, libm or Embree might move.
+DEFAULT_SLACK = 1.25
+# The function whose instructions are counted: one frame's render, whatever the method.
+COUNTED_FUNCTION = "clipblur::renderFrame*"
 
 
 class GateError(RuntimeError):
     pass
 
 
-def render(clipblur, method, mode, workdir, index, threads, cpu, scene=SCENE, settings=None):
-    m = MODES[mode]
-    image = Path(workdir) / f"{scene.stem}_{method}_{index}.exr"
-    stats = image.with_suffix(".stats.json")
-    cmd = [clipblur, "render", str(scene), "--out", str(image), "--stats", str(stats), "--progress", "none",
-           "--threads", str(threads), "--set", f"film.width={m['width']}",
-           "--set", f"film.height={m['height']}", "--set", f"render.samples={m['samples']}"]
-    for setting in settings if settings is not None else METHOD_SETTINGS[method]:
+def render_command(clipblur, scene, image, size, samples, settings):
+    cmd = [clipblur, "render", str(scene), "--out", str(image), "--stats", str(image.with_suffix(".stats.json")),
+           "--progress", "none", "--threads", "1", "--set", f"film.width={size[0]}",
+           "--set", f"film.height={size[1]}", "--set", f"render.samples={samples}"]
+    for setting in settings:
         cmd += ["--set", setting]
-    r = subprocess.run(cmd, capture_output=True, text=True,
-                       preexec_fn=(lambda: os.sched_setaffinity(0, {cpu})) if cpu is not None else None)
+    return cmd
+
+
+def run(cmd, what):
+    r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
-        raise GateError(f"render failed ({r.returncode}): {' '.join(cmd)}\n{r.stderr.strip()}")
-    with open(stats) as f:
+        raise GateError(f"{what} failed ({r.returncode}): {' '.join(cmd)}\n{r.stderr.strip()[-2000:]}")
+    return r
+
+
+def render(clipblur, mode, workdir, name, scene, settings):
+    """Stats of one native single-threaded render at the mode's size."""
+    m = MODES[mode]
+    image = Path(workdir) / f"{name}.exr"
+    run(render_command(clipblur, scene, image, (m["width"], m["height"]), m["samples"], settings), "render")
+    with open(image.with_suffix(".stats.json")) as f:
         return json.load(f)
 
 
-def measure(clipblur, mode, threads, counts_only=False):
-    # Counts need only two repeats to show they agree (the sanitizer build, where each render is slow).
-    repeats = 2 if counts_only else MODES[mode]["repeats"]
-    # One CPU for every render (the first this process may use) when they are single-threaded.
-    cpu = min(os.sched_getaffinity(0)) if threads == 1 and hasattr(os, "sched_getaffinity") else None
+def instructions(clipblur, mode, workdir, method):
+    """Instructions callgrind counts inside renderFrame for one gate method at the mode's instruction size."""
+    m = MODES[mode]
+    image = Path(workdir) / f"instr_{method}.exr"
+    out = Path(workdir) / f"instr_{method}.callgrind"
+    cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", f"--toggle-collect={COUNTED_FUNCTION}",
+           *render_command(clipblur, SCENE, image, (m["instr_width"], m["instr_height"]), m["instr_samples"],
+                           METHOD_SETTINGS[method])]
+    found = re.search(r"Collected\s*:\s*(\d+)", run(cmd, f"callgrind render ({method})").stderr)
+    if not found or int(found.group(1)) == 0:
+        raise GateError(f"callgrind counted no instructions in {COUNTED_FUNCTION} ({method}): renamed?")
+    return int(found.group(1))
+
+
+def measure(clipblur, mode, counts_only=False):
+    if not counts_only and shutil.which("valgrind") is None:
+        raise GateError("valgrind is not installed (bash scripts/setup.sh installs it)")
     seconds = {m: [] for m in METHOD_SETTINGS}
     counts = {}
     with tempfile.TemporaryDirectory(prefix="clipblur_perf_") as workdir:
-        # Alternate the methods so a burst of load elsewhere hits both rather than one.
-        for i in range(repeats):
-            for method in METHOD_SETTINGS:
-                s = render(clipblur, method, mode, workdir, i, threads, cpu)
-                if "cpu" not in s["seconds"]:
-                    raise GateError(f"{method} stats have no seconds.cpu: is {clipblur} older than this gate?")
-                seconds[method].append(s["seconds"]["cpu"])
-                c = {k: s["counts"].get(k) for k in EXACT_COUNTS[method]}
-                if method in counts and counts[method] != c:
-                    raise GateError(f"{method} counts differ between repeats: {counts[method]} vs {c}")
-                counts[method] = c
-        for name in MANY_SCENES:
-            scene = REPO / "configs/bench/many" / f"{name}.yaml"
-            for method, settings in MANY_METHODS.items():
-                s = render(clipblur, method, mode, workdir, 0, threads, cpu, scene, settings)
-                key = many_key(method, name)
-                counts[key] = {k: s["counts"].get(k) for k in many_counts(method)}
-                seconds[key] = [s["seconds"]["cpu"]]
-    least = {m: min(v) for m, v in seconds.items()}
-    return {"cpu_seconds": seconds, "min_cpu_seconds": least, "pinned_cpu": cpu,
-            "ratio": least["clipped"] / least["stochastic"],
-            "ratio_sweep": least["sweep"] / least["stochastic"], "counts": counts}
+        # The callgrind renders (the gate's longest part, the longest first) run two at a time beside the
+        # native ones: their counts do not depend on what shares the cores.
+        with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+            pending = {} if counts_only else {
+                m: pool.submit(instructions, clipblur, mode, workdir, m) for m in ("sweep", "clipped", "stochastic")}
+            for i in range(REPEATS):
+                for method, settings in METHOD_SETTINGS.items():
+                    s = render(clipblur, mode, workdir, f"{method}_{i}", SCENE, settings)
+                    seconds[method].append(s["seconds"]["cpu"])
+                    c = {k: s["counts"].get(k) for k in EXACT_COUNTS[method]}
+                    if method in counts and counts[method] != c:
+                        raise GateError(f"{method} counts differ between repeats: {counts[method]} vs {c}")
+                    counts[method] = c
+            for name in MANY_SCENES:
+                scene = REPO / "configs/bench/many" / f"{name}.yaml"
+                for method, settings in MANY_METHODS.items():
+                    key = many_key(method, name)
+                    s = render(clipblur, mode, workdir, key.replace("/", "_"), scene, settings)
+                    counts[key] = {k: s["counts"].get(k) for k in many_counts(method)}
+                    seconds[key] = [s["seconds"]["cpu"]]
+            instr = {m: f.result() for m, f in pending.items()}
+    return {"cpu_seconds": seconds, "min_cpu_seconds": {m: min(v) for m, v in seconds.items()},
+            "instructions": instr, "counts": counts}
 
 
 def many_key(method, name):
@@ -149,32 +170,7 @@ def many_counts(method):
     return AUTO_COUNTS if method == "auto" else MANY_COUNTS
 
 
-def cpu_model():
-    """The CPU model name from /proc/cpuinfo (the timing baseline is per model), else the platform's."""
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or platform.machine()
-
-
-def timing_limits(expected, model):
-    """(ratio limit, sweep ratio limit, note) for this CPU model from the committed table."""
-    timing = expected.get("timing", {})
-    if model in timing:
-        t = timing[model]
-        return t["ratio_max"], t["ratio_sweep_max"], f"committed for {model}"
-    if not timing:
-        return None, None, "no committed timing"
-    ratio = max(t["ratio_measured"] for t in timing.values()) * FOREIGN_CPU_SLACK
-    sweep = max(t["ratio_sweep_measured"] for t in timing.values()) * FOREIGN_CPU_SLACK
-    return ratio, sweep, (f"no committed timing for CPU '{model}': limits are the committed ratios x "
-                          f"{FOREIGN_CPU_SLACK} and catch only gross slowdowns; run --update on this machine")
-
-
-def check(result, expected, counts_only, model):
+def check(result, expected, counts_only):
     failures = []
     gated = dict(EXACT_COUNTS, **{many_key(m, n): many_counts(m) for m in MANY_METHODS for n in MANY_SCENES})
     for method, keys in gated.items():
@@ -185,17 +181,27 @@ def check(result, expected, counts_only, model):
                 failures.append(f"{method}.{k}: no committed value (run --update)")
             elif got.get(k) != want[k]:
                 failures.append(f"{method}.{k}: {got.get(k)} != committed {want[k]}")
-    if not counts_only:
-        ratio_max, sweep_max, note = timing_limits(expected, model)
-        print(f"perf gate: timing limits {note}")
-        if ratio_max is None:
-            failures.append("timing: no committed ratios (run --update)")
-        else:
-            if result["ratio"] > ratio_max:
-                failures.append(f"clipped/stochastic CPU ratio {result['ratio']:.3f} > limit {ratio_max:.3f}")
-            if result["ratio_sweep"] > sweep_max:
-                failures.append(f"sweep/stochastic CPU ratio {result['ratio_sweep']:.3f} > limit {sweep_max:.3f}")
+    if counts_only:
+        return failures
+    committed = expected.get("instructions", {})
+    slack = committed.get("slack", DEFAULT_SLACK)
+    for method, got in result["instructions"].items():
+        want = committed.get(method)
+        if want is None:
+            failures.append(f"{method}: no committed instruction count (run --update)")
+            continue
+        print(f"perf gate: {method} {got / 1e6:.1f} M instructions, {got / want:.3f}x committed "
+              f"{want / 1e6:.1f} M (limit {slack}x)")
+        if got > want * slack:
+            failures.append(f"{method} instructions {got} > limit {round(want * slack)} (committed {want} x {slack})")
+        elif got * slack < want:
+            print(f"perf gate: {method} runs {want / got:.2f}x fewer instructions than committed: --update "
+                  "locks the gain in")
     return failures
+
+
+def valgrind_version():
+    return subprocess.run(["valgrind", "--version"], capture_output=True, text=True).stdout.strip()
 
 
 def git_hash():
@@ -210,11 +216,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--clipblur", default=os.environ.get("CLIPBLUR", str(REPO / "build" / "clipblur")))
     ap.add_argument("--mode", choices=sorted(MODES), default="short")
-    ap.add_argument("--threads", type=int, default=1,
-                    help="render threads (default 1: least disturbed by other processes; counts do not depend on it)")
     ap.add_argument("--update", action="store_true", help="rewrite this mode's thresholds from this run")
-    ap.add_argument("--slack", type=float, default=DEFAULT_SLACK, help="ratio limit = measured ratio x slack (--update)")
-    ap.add_argument("--counts-only", action="store_true", help="skip the timing gate (sanitizer builds)")
+    ap.add_argument("--slack", type=float, default=DEFAULT_SLACK,
+                    help="instruction limit = committed count x slack (--update)")
+    ap.add_argument("--counts-only", action="store_true", help="skip the instruction gate (no valgrind run)")
     ap.add_argument("--thresholds", default=str(THRESHOLDS))
     ap.add_argument("--record", help="JSON record path (full mode default: build/perf/perf_<git>.json)")
     args = ap.parse_args()
@@ -222,12 +227,11 @@ def main():
     try:
         if not Path(args.clipblur).is_file():
             raise GateError(f"no clipblur binary at {args.clipblur}")
-        result = measure(args.clipblur, args.mode, args.threads, args.counts_only and not args.update)
+        counts_only = args.counts_only and not args.update
+        result = measure(args.clipblur, args.mode, counts_only)
         least = result["min_cpu_seconds"]
-        model = cpu_model()
-        print(f"perf gate ({args.mode}, {model}, renders on CPU {result['pinned_cpu']}): least CPU seconds of {len(result['cpu_seconds']['clipped'])}: clipped "
-              f"{least['clipped']:.4f}, sweep {least['sweep']:.4f}, stochastic {least['stochastic']:.4f}; "
-              f"ratios {result['ratio']:.3f} and {result['ratio_sweep']:.3f}")
+        print(f"perf gate ({args.mode}): least CPU seconds of {REPEATS} (printed, not gated): clipped "
+              f"{least['clipped']:.4f}, sweep {least['sweep']:.4f}, stochastic {least['stochastic']:.4f}")
         for m in MANY_METHODS:
             print(f"perf gate: many-object scenes, {m}, CPU seconds: " +
                   ", ".join(f"{n} {least[many_key(m, n)]:.3f}" for n in MANY_SCENES))
@@ -235,27 +239,18 @@ def main():
         path = Path(args.thresholds)
         table = json.loads(path.read_text()) if path.is_file() else {}
         if args.update:
-            entry = table.get(args.mode, {})
-            timing = entry.get("timing", {})
-            if entry.get("counts") != result["counts"]:
-                # The algorithm changed: other models' ratios were measured on the old one.
-                if set(timing) - {model}:
-                    print(f"counts changed: dropping the timing of {sorted(set(timing) - {model})}")
-                timing = {}
-            timing[model] = {"ratio_measured": round(result["ratio"], 4),
-                             "ratio_max": round(result["ratio"] * args.slack, 4),
-                             "ratio_sweep_measured": round(result["ratio_sweep"], 4),
-                             "ratio_sweep_max": round(result["ratio_sweep"] * args.slack, 4),
-                             "slack": args.slack, "git": git_hash()}
-            table[args.mode] = {"counts": result["counts"], "timing": timing}
+            table[args.mode] = {"counts": result["counts"],
+                                "instructions": dict(result["instructions"], slack=args.slack, git=git_hash(),
+                                                     valgrind=valgrind_version())}
             path.write_text(json.dumps(table, indent=2, sort_keys=True) + "\n")
-            print(f"updated {path} [{args.mode}]")
+            print(f"updated {path} [{args.mode}]: " +
+                  ", ".join(f"{m} {n / 1e6:.1f} M instructions" for m, n in result["instructions"].items()))
             failures = []
         else:
-            failures = check(result, table.get(args.mode, {}), args.counts_only, model)
+            failures = check(result, table.get(args.mode, {}), counts_only)
 
         if args.mode == "full" or args.record:
-            record = dict(result, mode=args.mode, git=git_hash(), threads=args.threads, cpu=model,
+            record = dict(result, mode=args.mode, git=git_hash(), cpu=platform.processor() or platform.machine(),
                           date=datetime.datetime.now().isoformat(timespec="seconds"), host=platform.node(),
                           nproc=os.cpu_count(), failures=failures)
             rec = Path(args.record) if args.record else REPO / "build" / "perf" / f"perf_{record['git'][:12]}.json"
