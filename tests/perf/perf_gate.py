@@ -43,7 +43,8 @@ REPO = HERE.parents[1]
 SCENE = HERE / "gate_scene.yaml"
 THRESHOLDS = HERE / "thresholds.json"
 
-# Native renders at width x height give the counts; the instruction renders run under callgrind at about
+# Native renders at width x height give the counts (`samples` is the stochastic one's, the setting the
+# committed counts were made with); the instruction renders run under callgrind at about
 # 40x the native time, so at a quarter of the pixels and with fewer stochastic samples (about 1.1, 1.8 and
 # 0.15 G instructions in short mode: 25, 32 and 5 s of one core; the gate takes about a minute on 2 cores).
 MODES = {
