@@ -15,6 +15,7 @@ struct ErrorTargetStats {
     long long renders = 0;       // pilots, the render, corrections and re-clip checks
     double sweep_spacing = 0.0;  // sweep: the chosen spacing
     double reclip_spacing = 0.0;  // sweep: the re-clip spacing where the re-clip check chose one
+    double reclip_order = 0.0;    // sweep: the re-clip error's order, where the check measured it
     long long subframes = 0;     // point subframes: the chosen count
     double reached_error = 0.0;  // what the choice was judged by: against the pilot, or the estimate
     bool against_pilot = false;  // the render was well coarser than the pilot and measured against it
@@ -32,6 +33,7 @@ struct ErrorTargetStats {
         f.count("renders", renders);
         if (sweep_spacing > 0.0) f.value("sweep_spacing", sweep_spacing);
         if (reclip_spacing > 0.0) f.value("reclip_spacing", reclip_spacing);
+        if (reclip_order > 0.0) f.value("reclip_order", reclip_order);
         if (subframes > 0) f.count("subframes", subframes);
         f.value(against_pilot ? "error_against_pilot" : "estimated_error", reached_error);
         f.count("pilot_kept", pilot_kept ? 1 : 0);

@@ -172,44 +172,97 @@ double reclipSpacing(const RenderJob& job) {
     return job.render.reclip_spacing > 0.0 ? job.render.reclip_spacing : job.render.sweep_spacing;
 }
 
-// The error a sweep's estimate does not see: visibility frozen between re-clips and fragments carried
-// rigidly over surfaces that turn under them. A render with re-clips at half the spacing measures it:
-// their RMS difference d holds both time-sampling errors (estimated, nearly independent, so taken off in
-// quadrature) and the change in re-clip error. That error falls about as the re-clip count c (what one
-// surface hides of another moves by the re-clip spacing), so E(c1) - E(c2) = E(c2) (c2 / c1 - 1). Where
-// the finer render still misses by more than 4/3, the re-clips are refined once more, to what the time
-// error leaves of the target, by the count's measured response to the spacing. Returns whether the re-clip
-// error was over the target (the re-clips were refined).
-bool checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Choice& choice, int& renders) {
-    const double target = tuning.job.render.error_target;
-    const ClippedStats& first = choice.result.stats.clipped();
-    RenderJob finer = choice.job;
-    finer.render.reclip_spacing = std::max(kMinSpacing, reclipSpacing(choice.job) / 2.0);
-    RenderResult second = renderClipped(finer, frame, quiet);
+// A render of the re-clip check: the choice's job with re-clips at `spacing`.
+struct ReclipRender {
+    RenderJob job;
+    RenderResult result;
+    double count = 0.0, estimate = 0.0;  // re-clips, and the time error its estimate sees
+};
+
+ReclipRender renderReclips(const RenderJob& job, double spacing, int frame, const RenderCallbacks& quiet, int& renders) {
+    ReclipRender r{job, {}};
+    r.job.render.reclip_spacing = std::max(kMinSpacing, spacing);
+    r.result = renderClipped(r.job, frame, quiet);
     ++renders;
-    const double c1 = static_cast<double>(first.subframes_total), c2 = static_cast<double>(second.stats.clipped().subframes_total);
-    if (!(c2 > c1 && c1 > 0.0)) return false;  // the re-clips do not follow the spacing here: nothing to see
-    const double e1 = first.estimated_error, e2 = second.stats.clipped().estimated_error;
-    const double d = rmsDifference(second.image, choice.result.image);
-    const double reclip2 = std::sqrt(std::max(0.0, d * d - e1 * e1 - e2 * e2)) / (c2 / c1 - 1.0);
-    const double total1 = std::hypot(e1, reclip2 * c2 / c1), total2 = std::hypot(e2, reclip2);
-    if (total1 <= target * 4.0 / 3.0) {
-        choice.reached = total1;
-        return false;
+    r.count = static_cast<double>(r.result.stats.clipped().subframes_total);
+    r.estimate = r.result.stats.clipped().estimated_error;
+    return r;
+}
+
+// How much two renders' re-clip errors differ: their RMS difference less both time errors, which are
+// nearly independent of it, in quadrature.
+double reclipChange(const RenderResult& fine, double e_fine, const RenderResult& coarse, double e_coarse) {
+    const double d = rmsDifference(fine.image, coarse.image);
+    return std::sqrt(std::max(0.0, d * d - e_coarse * e_coarse - e_fine * e_fine));
+}
+
+// The order p of a re-clip error E(c) ~ c^-p at which the changes measured over counts c1 < c2 < c3,
+// d12 = E(c1) - E(c2) and d23 = E(c2) - E(c3), agree; held to [1, 2]. Order 1 is where what one surface
+// hides of another moves a pixel or more between re-clips, so a pixel's coverage changes within one
+// interval; order 2 is the midpoint rule's, where visibility frozen at the middle of each interval
+// follows a coverage smooth over it. Past 2 the error has left the asymptote: 2 is the safe side.
+double reclipOrder(double c1, double c2, double c3, double d12, double d23) {
+    const auto ratio = [&](double p) {
+        return (std::pow(c1, -p) - std::pow(c2, -p)) / (std::pow(c2, -p) - std::pow(c3, -p));
+    };
+    double lo = 1.0, hi = 2.0;
+    if (!(d23 > 0.0) || d12 >= d23 * ratio(hi)) return hi;
+    if (d12 <= d23 * ratio(lo)) return lo;
+    for (int i = 0; i < 40; ++i) {  // the ratio rises with p: bisection to well under 1e-6
+        const double mid = 0.5 * (lo + hi);
+        (d12 > d23 * ratio(mid) ? lo : hi) = mid;
     }
-    choice = {finer, std::move(second), total2};
-    if (total2 <= target * 4.0 / 3.0) return true;
-    const double budget = std::sqrt(std::max(target * target - e2 * e2, 0.25 * target * target));
-    const double response = std::log(c2 / c1) / std::log(2.0);  // count ~ spacing^-response
-    RenderJob third = finer;
-    third.render.reclip_spacing =
-        std::max(kMinSpacing, reclipSpacing(finer) / std::pow(reclip2 / budget, 1.0 / response));
-    RenderResult result = renderClipped(third, frame, quiet);
-    ++renders;
-    const ClippedStats& s = result.stats.clipped();
-    const double c3 = std::max(1.0, static_cast<double>(s.subframes_total));
-    choice = {third, std::move(result), std::hypot(s.estimated_error, reclip2 * c2 / c3)};
-    return true;
+    return 0.5 * (lo + hi);
+}
+
+// The error a sweep's estimate does not see: visibility frozen between re-clips and fragments carried
+// rigidly over surfaces that turn under them. A render with re-clips at half the spacing measures its
+// change (reclipChange). At order 1, the slowest the error falls with the re-clip count c (reclipOrder),
+// E(c1) - E(c2) = E(c2) (c2 / c1 - 1): the largest error the change allows, so where the choice or the
+// finer render meets the target by that, it does. Where neither does, a third render, re-clips halved
+// again, measures the order, and the coarser of the two finer renders within 4/3 of the target at that
+// order is the answer; where neither is, the re-clips are refined once more at that order, to what the
+// time error leaves of the target, by the count's measured response to the spacing.
+struct ReclipCheck {
+    bool refined = false;  // the re-clip error was over the target: the re-clips were refined
+    double order = 0.0;    // the order measured by a third render, where one was made
+};
+
+ReclipCheck checkReclips(const Tuning& tuning, int frame, const RenderCallbacks& quiet, Choice& choice, int& renders) {
+    const double limit = tuning.job.render.error_target * 4.0 / 3.0;
+    const ClippedStats& first = choice.result.stats.clipped();
+    const double c1 = static_cast<double>(first.subframes_total), e1 = first.estimated_error;
+    ReclipRender second = renderReclips(choice.job, reclipSpacing(choice.job) / 2.0, frame, quiet, renders);
+    const double c2 = second.count, e2 = second.estimate;
+    if (!(c2 > c1 && c1 > 0.0)) return {};  // the re-clips do not follow the spacing here: nothing to see
+    const double d12 = reclipChange(second.result, e2, choice.result, e1);
+    const double bound2 = d12 / (c2 / c1 - 1.0);  // E(c2) at order 1
+    if (std::hypot(e1, bound2 * c2 / c1) <= limit) {
+        choice.reached = std::hypot(e1, bound2 * c2 / c1);
+        return {};
+    }
+    choice = {second.job, std::move(second.result), std::hypot(e2, bound2)};
+    if (choice.reached <= limit) return {true};
+    ReclipRender third = renderReclips(choice.job, reclipSpacing(choice.job) / 2.0, frame, quiet, renders);
+    const double c3 = third.count, e3 = third.estimate;
+    if (!(c3 > c2)) return {true};  // capped or saturated: the finer render stands, judged at order 1
+    const double d23 = reclipChange(third.result, e3, choice.result, e2);
+    const double p = reclipOrder(c1, c2, c3, d12, d23);
+    const double reclip3 = d23 / (std::pow(c3 / c2, p) - 1.0), reclip2 = reclip3 + d23;
+    if (std::hypot(e2, reclip2) <= limit) {
+        choice.reached = std::hypot(e2, reclip2);
+        return {true, p};
+    }
+    choice = {third.job, std::move(third.result), std::hypot(e3, reclip3)};
+    if (choice.reached <= limit) return {true, p};
+    const double target = tuning.job.render.error_target;
+    const double budget = std::sqrt(std::max(target * target - e3 * e3, 0.25 * target * target));
+    const double response = std::log(c3 / c2) / std::log(2.0);  // count ~ spacing^-response
+    const double spacing = reclipSpacing(choice.job) / std::pow(reclip3 / budget, 1.0 / (p * response));
+    ReclipRender fourth = renderReclips(choice.job, spacing, frame, quiet, renders);
+    const double reclip4 = reclip3 * std::pow(c3 / std::max(1.0, fourth.count), p);
+    choice = {fourth.job, std::move(fourth.result), std::hypot(fourth.estimate, reclip4)};
+    return {true, p};
 }
 
 // Tiles whose re-clips max_subframes caps (counts.capped_tiles) hold visibility frozen longer than the
@@ -464,9 +517,11 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
     // Where that is under the target, the time error, which the estimate sees 0.3 .. 3x off, sets the
     // error: a second pilot judges it. Where re-clips set it, their check has judged them and the
     // re-clips were refined; a pilot at a finer spacing would share their error and not see it.
+    const bool by_estimate = !pilot.answer && !keep_pilot && !search->measured(choice.job);
+    ReclipCheck reclips;
+    if (by_estimate && tuning.sweep) reclips = checkReclips(tuning, frame, quiet, choice, search->renders);
     std::optional<Pilot> finer;
-    if (!pilot.answer && !keep_pilot && !search->measured(choice.job) &&
-        !(tuning.sweep && checkReclips(tuning, frame, quiet, choice, search->renders)))
+    if (by_estimate && !reclips.refined)
         finer = finerPilot(tuning, frame, quiet, pilot, tuning.intervalOf(choice.job));
     if (finer) {
         finer->renders += search->renders;
@@ -492,6 +547,7 @@ RenderResult renderToErrorTarget(const RenderJob& job, int frame, const RenderCa
                                     .renders = search->renders,
                                     .sweep_spacing = tuning.sweep ? choice.job.render.sweep_spacing : 0.0,
                                     .reclip_spacing = tuning.sweep ? choice.job.render.reclip_spacing : 0.0,
+                                    .reclip_order = reclips.order,
                                     .subframes = tuning.sweep ? 0 : choice.job.render.subframes,
                                     .reached_error = choice.reached,
                                     .against_pilot = search->measured(choice.job),

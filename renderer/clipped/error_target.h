@@ -34,13 +34,15 @@ namespace clipblur {
 // pilot is judged with its re-clip error; the pilot's own is not seen. A sweep
 // render judged by its own estimate (which sees sweep positions, not re-clips) is checked against one
 // with re-clips at half the spacing (render.reclip_spacing): their difference, less both estimates in
-// quadrature, is the change in re-clip error, taken to fall as the re-clip count. The finer render is the
-// answer where the first misses by more than 4/3, and one more refines the re-clips to what the time
-// error leaves of the target where that misses too. Where the check finds the re-clip error within the
-// target, the time error sets it, and the estimate sees that 0.3 .. 3x off: a second pilot at half the
-// render's interval judges the render against its image, and the search above runs again from it, its
-// corrections kept where it judges them (1.5x its interval or coarser); where they end over the target,
-// the second pilot is the answer. Last, where the answer has tiles whose re-clips max_subframes caps
+// quadrature, is the change in re-clip error, bounded by order 1 in the re-clip count. The finer render is
+// the answer where the first misses by more than 4/3 at that bound; where the finer one misses too, a
+// third render, re-clips halved again, measures the order (1 .. 2: 2 is the midpoint rule's), the coarser
+// of the two finer renders that meets the target at it is the answer, and where neither does, one more
+// refines the re-clips at that order to what the time error leaves of the target. Where the check finds
+// the re-clip error within the target, the time error sets it, and the estimate sees that 0.3 .. 3x
+// off: a second pilot at half the render's interval judges the render against its image, and the search
+// above runs again from it, its corrections kept where it judges them (1.5x its interval or coarser);
+// where they end over the target, the second pilot is the answer. Last, where the answer has tiles whose re-clips max_subframes caps
 // (every render that chose had the cap, so none saw that error), a render with the cap doubled measures
 // it, and the cap is doubled (up to 4096) until the answer fits within 4/3 of the target beside it. Before
 // that, where the answer is under 3/4 of the target with auto segments, fewer segments are tried

@@ -393,6 +393,32 @@ PassingQuads passingQuads(double vy_far, double vy_near) {
     return {job, std::move(reference)};
 }
 
+// The re-clip check's model (error_target.cpp, reclipOrder): visibility frozen at the middle of each
+// re-clip interval is a midpoint rule in time over a coverage that is smooth between the intervals'
+// kinks, so the re-clip error falls as the re-clip count squared. Positions fixed at 0.02 px (time
+// error under 2e-6) and re-clips at 2 px down to 0.125 px over quads passing at 44 px: the order between
+// successive halvings, in the count, must lie within 1.8 .. 2.2 (measured 1.99 .. 2.00), where the rule
+// the check used before, order 1, would be off by a whole order.
+TEST(TimeError, ReclipErrorFallsAsTheReclipCountSquared) {
+    PassingQuads scene = passingQuads(0.7, 0.3);
+    scene.job.render.sweep_spacing = 0.02;
+    double count = 0.0, error = 0.0;
+    for (const double spacing : {2.0, 1.0, 0.5, 0.25, 0.125}) {
+        scene.job.render.reclip_spacing = spacing;
+        const RenderResult r = renderFrame(scene.job, 0);
+        const double c = static_cast<double>(r.stats.clipped().subframes_total);
+        const double e = rmsDifference(scene.reference.image, r.image);
+        if (count > 0.0) {
+            ASSERT_GT(c, count) << spacing;
+            const double order = std::log(error / e) / std::log(c / count);
+            EXPECT_GT(order, 1.8) << spacing;
+            EXPECT_LT(order, 2.2) << spacing;
+        }
+        count = c;
+        error = e;
+    }
+}
+
 // A pilot without an estimate, refined 4x without one, is anchored on the refinement: E(1) = 4/3 of
 // their difference, and the order up to the coarser probe (4 px) measured (errors here: 1.4e-2, 1.3e-4
 // and 8.2e-6 at 4, 1 and 0.25 px, order 3.4 then 2). Refined twice instead, the pilot of 0.0625 px cost
