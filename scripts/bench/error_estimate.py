@@ -26,6 +26,9 @@ auto re-clips follow that spacing as its positions do (fine in everything), as a
 per scene, `ref_check`: the reference's difference from the same render at twice its spacing, which
 bounds the reference's own error where it converges (both errors fall with the spacing).
 
+With --targets and --search-only: no references, only what each search chose (spacing, the re-clip
+check's re-clip spacing and measured order, renders): which rows a change to the search moves.
+
 Writes a markdown table to stdout and results.csv under --out.
 
     scripts/bench/error_estimate.py                       # every bench scene at 160x90
@@ -129,14 +132,16 @@ def run_targets(clipblur, name, config, args, folder):
     # References are plain renders (no target): another run's at the same size may serve (--references-from).
     refs = Path(args.references_from) / "renders" / stem if args.references_from else folder / stem
     reference, check = refs / "target_reference.exr", refs / "target_reference_check.exr"
-    if args.references_from:
+    if args.search_only:
+        pass
+    elif args.references_from:
         if not (reference.exists() and check.exists()):
             raise benchlib.BenchError(f"no reference under {refs}")
     else:
         benchlib.render(clipblur, config, dict(base, **fine), reference, args.threads)
         benchlib.render(clipblur, config, {**base, **fine, "render.sweep_spacing": 2 * args.reference_spacing},
                         check, args.threads)
-    ref_check = benchlib.image_error(reference, check)["rmse"]
+    ref_check = math.nan if args.search_only else benchlib.image_error(reference, check)["rmse"]
     rows = []
     for target in args.targets:
         image = folder / stem / f"target_{target:g}.exr"
@@ -144,7 +149,9 @@ def run_targets(clipblur, name, config, args, folder):
         values, counts = stats["values"], stats.get("counts", {})
         rows.append({"scene": name, "target": target, "spacing": values.get("target_sweep_spacing", math.nan),
                      "estimated": values["estimated_error"], "seconds": stats["seconds"]["total"],
-                     "e_total": benchlib.image_error(reference, image)["rmse"], "ref_check": ref_check,
+                     "e_total": math.nan if args.search_only else benchlib.image_error(reference, image)["rmse"],
+                     "ref_check": ref_check, "reclip_spacing": values.get("target_reclip_spacing", math.nan),
+                     "reclip_order": values.get("target_reclip_order", math.nan),
                      "renders": counts.get("target_renders"), "bisections": counts.get("target_bisections"),
                      "pilot_kept": counts.get("target_pilot_kept")})
         r = rows[-1]  # as it comes: a long run shows its rows before the table
@@ -154,6 +161,14 @@ def run_targets(clipblur, name, config, args, folder):
 
 
 def print_targets(rows, args):
+    if args.search_only:
+        print(f"{args.width}x{args.height}, the searches alone (no references)\n")
+        print("| scene | target | chosen spacing (px) | re-clip spacing (px) | re-clip order | renders | seconds |")
+        print("|---|---|---|---|---|---|---|")
+        for r in rows:
+            print(f"| {r['scene']} | {r['target']:g} | {r['spacing']:.4g} | {r['reclip_spacing']:.4g} | "
+                  f"{r['reclip_order']:.3g} | {r['renders']} | {r['seconds']:.2f} |")
+        return
     print(f"{args.width}x{args.height}, references at {args.reference_spacing:g} px (re-clips following)\n")
     print("| scene | target | chosen spacing (px) | estimated / target | e_total / target | ref_check / target | seconds |")
     print("|---|---|---|---|---|---|---|")
@@ -183,6 +198,8 @@ def main():
                     "scenes scripts/bench/random_scenes.py writes for them, under <out>/random")
     ap.add_argument("--references-from", help="with --targets: reuse the references of an earlier --out at the "
                     "same size and reference spacing instead of rendering them")
+    ap.add_argument("--search-only", action="store_true", help="with --targets: no references, only what each "
+                    "search chose (the re-clip check's spacing and order among it)")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", default=str(benchlib.REPO / "build" / "bench" / "error_estimate"))
     ap.add_argument("--clipblur", help="path of the clipblur binary (default build/clipblur or $CLIPBLUR)")
