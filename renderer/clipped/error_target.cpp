@@ -197,10 +197,11 @@ double reclipChange(const RenderResult& fine, double e_fine, const RenderResult&
 }
 
 // The order p of a re-clip error E(c) ~ c^-p at which the changes measured over counts c1 < c2 < c3,
-// d12 = E(c1) - E(c2) and d23 = E(c2) - E(c3), agree; held to [1, 2]. Order 1 is where what one surface
-// hides of another moves a pixel or more between re-clips, so a pixel's coverage changes within one
-// interval; order 2 is the midpoint rule's, where visibility frozen at the middle of each interval
-// follows a coverage smooth over it. Past 2 the error has left the asymptote: 2 is the safe side.
+// d12 = E(c1) - E(c2) and d23 = E(c2) - E(c3), agree; held to [1, 2]. Order 2 is the midpoint rule's:
+// visibility frozen at the middle of each interval over a coverage smooth between kinks
+// (TimeError.ReclipErrorFallsAsTheReclipCountSquared); where visibility changes in ways that rule does
+// not follow, the error falls slower; slower than order 1 (the bound the check accepts by) is taken as
+// 1. Past 2 the error has left the asymptote: 2 is the safe side.
 double reclipOrder(double c1, double c2, double c3, double d12, double d23) {
     const auto ratio = [&](double p) {
         return (std::pow(c1, -p) - std::pow(c2, -p)) / (std::pow(c2, -p) - std::pow(c3, -p));
