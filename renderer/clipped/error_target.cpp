@@ -238,8 +238,9 @@ ReclipCheck checkReclips(const Tuning& tuning, int frame, const RenderCallbacks&
     if (!(c2 > c1 && c1 > 0.0)) return {};  // the re-clips do not follow the spacing here: nothing to see
     const double d12 = reclipChange(second.result, e2, choice.result, e1);
     const double bound2 = d12 / (c2 / c1 - 1.0);  // E(c2) at order 1
-    if (std::hypot(e1, bound2 * c2 / c1) <= limit) {
-        choice.reached = std::hypot(e1, bound2 * c2 / c1);
+    const double total1 = std::hypot(e1, bound2 * c2 / c1);
+    if (total1 <= limit) {
+        choice.reached = total1;
         return {};
     }
     choice = {second.job, std::move(second.result), std::hypot(e2, bound2)};
@@ -249,9 +250,9 @@ ReclipCheck checkReclips(const Tuning& tuning, int frame, const RenderCallbacks&
     if (!(c3 > c2)) return {true};  // capped or saturated: the finer render stands, judged at order 1
     const double d23 = reclipChange(third.result, e3, choice.result, e2);
     const double p = reclipOrder(c1, c2, c3, d12, d23);
-    const double reclip3 = d23 / (std::pow(c3 / c2, p) - 1.0), reclip2 = reclip3 + d23;
-    if (std::hypot(e2, reclip2) <= limit) {
-        choice.reached = std::hypot(e2, reclip2);
+    const double reclip3 = d23 / (std::pow(c3 / c2, p) - 1.0), total2 = std::hypot(e2, reclip3 + d23);
+    if (total2 <= limit) {
+        choice.reached = total2;
         return {true, p};
     }
     choice = {third.job, std::move(third.result), std::hypot(e3, reclip3)};
