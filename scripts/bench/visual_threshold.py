@@ -9,9 +9,11 @@ settings against a reference converged in time and in re-clips, judged twice:
             so a render no pixel of which is more than one code value off shows no strobing or stepping
             that the display could show.
 
-Settings: the default render (nothing set), render.error_target T (--targets), and, for context, the
+Settings: the default render (nothing set), the default with render.sweep_spacing S (--spacings: under
+time_integration auto it places point subframes too), render.error_target T (--targets), and, for context, the
 strongest peer's stochastic ray casting at --peer-spp samples. The reference is sweep integration at
---reference-spacing px with --refine x the auto re-clips of a 1 px sweep render.
+--reference-spacing px with automatic re-clips spaced 1 / --refine px (--refine x a default render's
+in every tile and shutter segment).
 
     scripts/bench/visual_threshold.py --width 320 --height 180 --targets 1e-2,3e-3,1e-3,3e-4
 """
@@ -66,13 +68,19 @@ def run_scene(clipblur, name, config, args, folder):
                                 args.threads)
         return image, stats
 
-    _, probe = clipped("sweep_1px", {"render.time_integration": "sweep"})
-    reclips = max(1, probe["counts"].get("subframes_max_per_tile", 0))
-    reference, _ = clipped("reference", {"render.time_integration": "sweep",
-                                         "render.sweep_spacing": args.reference_spacing,
-                                         "render.subframes": reclips * args.refine,
-                                         "render.max_subframes": max(4096, reclips * args.refine)})
-    settings = [("default", {})] + [(f"target {t:g}", {"render.error_target": t}) for t in args.targets]
+    if args.references_from:
+        reference = Path(args.references_from) / "renders" / stem.name / "reference.exr"
+        if not reference.exists():
+            raise benchlib.BenchError(f"no reference {reference}")
+    else:
+        # Automatic re-clips --refine x as dense as a default render's in every tile of every shutter
+        # segment (a fixed count would be shared out over the segments), uncapped.
+        reference, _ = clipped("reference", {"render.time_integration": "sweep",
+                                             "render.sweep_spacing": args.reference_spacing,
+                                             "render.reclip_spacing": 1.0 / args.refine,
+                                             "render.max_subframes": 4096})
+    settings = ([("default", {})] + [(f"spacing {s:g}", {"render.sweep_spacing": s}) for s in args.spacings] +
+                [(f"target {t:g}", {"render.error_target": t}) for t in args.targets])
     rows = []
     for label, overrides in settings:
         image, stats = clipped(label.replace(" ", "_"), overrides)
@@ -95,14 +103,19 @@ def main():
     ap.add_argument("--width", type=int, default=320)
     ap.add_argument("--height", type=int, default=180)
     ap.add_argument("--targets", default="1e-2,3e-3,1e-3,3e-4")
+    ap.add_argument("--spacings", default="", help="comma-separated render.sweep_spacing values (px) to "
+                                                   "render beside the default")
     ap.add_argument("--peer-spp", type=int, default=256, help="stochastic samples for context (0: none)")
     ap.add_argument("--reference-spacing", type=float, default=0.05, help="px")
     ap.add_argument("--refine", type=int, default=4, help="the reference's re-clips over the auto ones")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", default=str(benchlib.REPO / "build" / "bench" / "visual_threshold"))
+    ap.add_argument("--references-from", help="reuse the references of an earlier --out at the same size "
+                                               "(another binary's renders against the same references)")
     ap.add_argument("--clipblur", help="path of the clipblur binary (default build/clipblur or $CLIPBLUR)")
     args = ap.parse_args()
     args.targets = [float(t) for t in args.targets.split(",") if t]
+    args.spacings = [float(s) for s in args.spacings.split(",") if s]
     clipblur = benchlib.find_clipblur(args.clipblur)
     scenes = scene_configs(args.scenes)
     if not args.scenes:
@@ -119,7 +132,8 @@ def main():
         w = csv.DictWriter(f, fieldnames=["scene", "setting", "seconds", "rmse", "max_codes", "over_one_percent"])
         w.writeheader()
         w.writerows(rows)
-    print(f"{args.width}x{args.height}; reference: sweep {args.reference_spacing:g} px, {args.refine}x re-clips\n")
+    print(f"{args.width}x{args.height}; reference: sweep {args.reference_spacing:g} px, re-clips "
+          f"{1.0 / args.refine:g} px\n")
     print("| scene | setting | RMSE (linear) | max difference (8-bit sRGB codes) | pixels > 1 code | seconds |")
     print("|---|---|---|---|---|---|")
     for r in rows:
