@@ -311,6 +311,7 @@ void chooseIntegration(const ClippedContext& ctx, const SegmentSpec& seg, Segmen
     // frozen over an interval, falling about as the spacing of relative motion) where it was.
     MotionPlanOptions options{.subframes = seg.subframes,
                               .max_subframes = settings.max_subframes,
+                              .shutter_share = seg.weight,
                               .reclip_spacing = settings.reclip_spacing > 0.0 ? settings.reclip_spacing : settings.sweep_spacing,
                               .backdrop = ctx.backdrop};
     const bool automatic = settings.time_integration == TimeIntegration::Auto;

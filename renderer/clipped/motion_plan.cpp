@@ -316,7 +316,8 @@ MotionPlan planMotion(const FrameSetup& frame, const MotionWindow& window, const
         if (subframes > 0) {
             p.count = std::min(subframes, max_subframes);
         } else if (!sweep) {
-            p.count = subframeCount(p.max_sweep_pixels / options.point_spacing, max_subframes, &p.capped);
+            p.count = subframeCount(kinkSamples(p.max_sweep_pixels, options.shutter_share, options.point_spacing),
+                                    max_subframes, &p.capped);
         } else {
             // Sweep integration moves each fragment along its own path between re-clips, so what one
             // surface does smoothly (a pan, a roll, a dolly) needs no re-clip. Re-clips follow what is

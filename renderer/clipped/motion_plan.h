@@ -77,6 +77,7 @@ struct MotionPlanOptions {
     int max_subframes = 1;
     bool sweep = false;
     double point_spacing = 1.0;  // point subframes: pixels a vertex moves between them
+    double shutter_share = 1.0;  // the segment's share of the frame's shutter (kinkSamples)
     // Sweep: pixels surfaces of different motion groups move relative to each other between re-clips;
     // the tolerances for how far a sweep strays from a path scale with it, as its square below a pixel.
     double reclip_spacing = 1.0;

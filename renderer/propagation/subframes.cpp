@@ -435,6 +435,12 @@ int subframeCount(double pixels, int max_subframes, bool* capped) {
     return std::max(1, static_cast<int>(wanted));
 }
 
+double kinkSamples(double pixels, double share, double spacing) {
+    // pixels first: a NaN stays NaN (std::max keeps its first argument unless the second is larger), and
+    // subframeCount caps it.
+    return std::max(pixels, std::sqrt(kKinkMotion * share * pixels)) / spacing;
+}
+
 SubframePlan planSubframes(std::span<const FragmentMotion> fragments, const RasterBounds& tile, int max_subframes) {
     SubframePlan plan;
     for (const FragmentMotion& fragment : fragments) {

@@ -40,12 +40,12 @@ Choice choiceOf(const RenderResult& r) {
 
 // The three motions below, each over the black background (nothing still, so no backdrop), with the
 // answer read off the counts of the two plans rather than from the cost model's constants:
-//   slow: a quad moving half a pixel: one point subframe and one sweep re-clip with one position;
-//         a sweep re-clip costs at least a point one and adds its position, so points;
-//   pan:  a quad moving 24 px alone: 24 point subframes on its tiles, one sweep re-clip (translation
-//         leaves no path bend and there is no relative motion), so sweep;
-//   crossing: two quads passing each other 12 px each way: 12 point subframes, but 24 sweep re-clips
-//         (their relative motion) on every moving tile, so points.
+//   slow: a quad moving half a pixel: 4 point subframes (the kink floor, kinkSamples: sqrt(32 x 0.5))
+//         and one sweep re-clip with one position, which costs less than 4 point re-clips, so sweep;
+//   pan:  a quad moving 24 px alone: 28 point subframes on its tiles (sqrt(32 x 24) = 27.7), one sweep
+//         re-clip (translation leaves no path bend and there is no relative motion), so sweep;
+//   crossing: two quads passing each other 12 px each way: 20 point subframes (sqrt(32 x 12) = 19.6),
+//         but 24 sweep re-clips (their relative motion) on every moving tile, so points.
 Object slowQuad() { return movingQuad(8, 8, 20, 20, 4.0, {0.5, 0.0}); }
 Object panQuad() { return movingQuad(2, 8, 12, 20, 4.0, {24.0, 0.0}); }
 Object leftQuad() { return movingQuad(2, 6, 12, 16, 4.0, {12.0, 0.0}); }
@@ -59,9 +59,9 @@ struct AutoCase {
 };
 
 std::vector<AutoCase> cases() {
-    return {{"slow", {slowQuad()}, TimeIntegration::Subframes, 1, 1},
-            {"pan", {panQuad()}, TimeIntegration::Sweep, 24, 1},
-            {"crossing", {leftQuad(), rightQuad()}, TimeIntegration::Subframes, 12, 24}};
+    return {{"slow", {slowQuad()}, TimeIntegration::Sweep, 4, 1},
+            {"pan", {panQuad()}, TimeIntegration::Sweep, 28, 1},
+            {"crossing", {leftQuad(), rightQuad()}, TimeIntegration::Subframes, 20, 24}};
 }
 
 // The premise of each case: the explicit methods' plans have the counts the case is built on.
@@ -121,10 +121,10 @@ TEST(AutoIntegration, FixedSubframesMeanPointSubframes) {
     EXPECT_TRUE(sameBits(automatic, points));
 }
 
-// A still quad behind a slow one under a still camera: a backdrop behind everything, left out of the
-// fragment sets, which only sweep composites; auto sweeps though the slow motion alone would pick points.
+// A still quad behind two crossing ones under a still camera: a backdrop behind everything, left out of
+// the fragment sets, which only sweep composites; auto sweeps though the crossing alone picks points.
 TEST(AutoIntegration, BackdropBehindEverythingSweeps) {
-    RenderJob job = clippedJob({rasterQuad(0, 0, 32, 32, 10.0), slowQuad()}, TimeIntegration::Auto);
+    RenderJob job = clippedJob({rasterQuad(0, 0, 32, 32, 10.0), leftQuad(), rightQuad()}, TimeIntegration::Auto);
     const RenderResult automatic = renderFrame(job, 0);
     job.render.time_integration = TimeIntegration::Sweep;
     const RenderResult sweep = renderFrame(job, 0);

@@ -1,7 +1,9 @@
 #include "renderer/propagation/subframes.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -366,6 +368,47 @@ TEST(Subframes, PlannedCountKeepsRandomMotionWithinAPixelPerStep) {
             EXPECT_LE(maxSubframeStep(scene, proj, verts, 0.0, 1.0, plan.count), 1.02) << "seed " << seed;
         }
     }
+}
+
+// A pixel [0, 1] that an edge crosses at L px per shutter, starting at x0: its covered share at time t is
+// clamp(x0 + L t, 0, 1), whose integral over [0, 1] has the closed form (G(x0 + L) - G(x0)) / L with G
+// the antiderivative of the clamp. The largest error of n midpoint samples over where the edge starts.
+double kinkError(double pixels, int n) {
+    const auto clamp01 = [](double u) { return std::clamp(u, 0.0, 1.0); };
+    const auto antiderivative = [](double u) { return u < 0.0 ? 0.0 : u < 1.0 ? 0.5 * u * u : u - 0.5; };
+    double worst = 0.0;
+    constexpr int kStarts = 2000;
+    for (int i = 0; i <= kStarts; ++i) {
+        const double x0 = -pixels - 0.5 + (pixels + 2.0) * i / kStarts;
+        const double exact = (antiderivative(x0 + pixels) - antiderivative(x0)) / pixels;
+        double sampled = 0.0;
+        for (int k = 0; k < n; ++k) sampled += clamp01(x0 + pixels * (k + 0.5) / n);
+        worst = std::max(worst, std::abs(sampled / n - exact));
+    }
+    return worst;
+}
+
+// Eq. 24's count leaves short motions a visible step at the edges; kinkSamples holds every motion to
+// what eq. 24 leaves at kKinkMotion px, spacing^2 / 256 of the contrast over the whole shutter.
+TEST(Subframes, KinkSamplesHoldAnEdgeCrossingAPixelToA256thOfItsContrast) {
+    for (const double spacing : {0.5, 1.0, 2.0}) {
+        const double bound = spacing * spacing / (8.0 * kKinkMotion);
+        for (const double pixels : {0.3, 1.0, 2.0, 3.0, 5.5, 9.0, 17.0, 31.0, 48.0, 100.0}) {
+            for (const double share : {1.0, 0.25}) {
+                const int n = subframeCount(kinkSamples(pixels, share, spacing), 1 << 20);
+                // The error in the frame is the interval's share of it; 1e-9 is rounding in the sum.
+                EXPECT_LE(share * kinkError(pixels, n), bound * (1.0 + 1e-9))
+                    << pixels << " px, share " << share << ", spacing " << spacing << ", " << n << " samples";
+                if (pixels >= kKinkMotion * share) EXPECT_EQ(n, subframeCount(pixels / spacing, 1 << 20)) << "eq. 24";
+            }
+        }
+    }
+    // What the floor is for: eq. 24 at a pixel's spacing leaves a 3 px motion 1/24 of the contrast.
+    EXPECT_NEAR(kinkError(3.0, subframeCount(3.0, 256)), 1.0 / 24.0, 1e-3);
+    EXPECT_EQ(subframeCount(kinkSamples(0.0, 1.0, 1.0), 256), 1) << "no motion, one sample";
+    bool capped = false;
+    subframeCount(kinkSamples(std::numeric_limits<double>::quiet_NaN(), 1.0, 1.0), 256, &capped);
+    EXPECT_TRUE(capped) << "a NaN path is capped, not a count";
 }
 
 TEST(Subframes, CapIsHonouredAndFlagged) {
