@@ -11,8 +11,8 @@ namespace clipblur {
 // triangle in one re-clip. At equal sample spacing the two reach about the same time-sampling error
 // (point subframes put vertices `spacing` pixels apart as sweep positions do), so the cheaper plan is the
 // cheaper at equal error; but point subframes take more than that where motion is short (kinkSamples)
-// and sweep positions do not, so there points are priced at the lower error. Per moving tile (max_sweep_pixels > 0) with F fragment triangles and R pixels
-// resolved per re-clip (MotionPlan::resolved):
+// and sweep positions do not, so there points are priced at the lower error. Per moving tile
+// (max_sweep_pixels > 0) with F fragment triangles and R pixels resolved per re-clip (MotionPlan::resolved):
 //     points  n (F + kPixelCost R)                                            n: its point subframes
 //     sweep   N kSweepReclipCost (F + kPixelCost R) + kPositionCost P R       N: re-clips, P: positions
 // A re-clip costs per triangle propagated and per pixel resolved; a sweep re-clip resolves an apron too

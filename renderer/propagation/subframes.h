@@ -153,14 +153,14 @@ struct SubframePlan {
 // N = ceil(pixels): at least 1, at most max_subframes (the corrected eq. 24, see docs/errata.md).
 int subframeCount(double pixels, int max_subframes, bool* capped = nullptr);
 
-// Midpoint samples in time (point subframes, sweep positions) for vertices moving `pixels` over an
+// Point subframes (midpoint samples in time; sweep positions keep eq. 24) for vertices moving `pixels` over an
 // interval that holds `share` of the frame's shutter, at `spacing`: what subframeCount takes. Eq. 24's
 // pixels / spacing leaves no gaps, but where an edge crosses a pixel the pixel's value kinks in time as
 // the edge enters and leaves it, and n midpoint samples err there by up to share pixels / (8 n^2) of the
 // edge's contrast: eq. 24 leaves a short motion 1 / (8 pixels), an eighth of the contrast for a motion
 // of one pixel, a visible step. So n is at least sqrt(kKinkMotion share pixels) / spacing, which holds
 // every motion to the error eq. 24 leaves at kKinkMotion px (1/256 of the contrast at spacing 1, one
-// code of 8 bits, falling as spacing^2). Tests: subframes_test.cpp, `KinkSamples*`.
+// code of 8 bits, falling as spacing^2). Test: Subframes.KinkSamplesHoldAnEdgeCrossingAPixelToA256thOfItsContrast.
 constexpr double kKinkMotion = 32.0;  // px
 double kinkSamples(double pixels, double share, double spacing);
 

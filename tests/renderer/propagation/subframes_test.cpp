@@ -399,7 +399,9 @@ TEST(Subframes, KinkSamplesHoldAnEdgeCrossingAPixelToA256thOfItsContrast) {
                 // The error in the frame is the interval's share of it; 1e-9 is rounding in the sum.
                 EXPECT_LE(share * kinkError(pixels, n), bound * (1.0 + 1e-9))
                     << pixels << " px, share " << share << ", spacing " << spacing << ", " << n << " samples";
-                if (pixels >= kKinkMotion * share) EXPECT_EQ(n, subframeCount(pixels / spacing, 1 << 20)) << "eq. 24";
+                if (pixels >= kKinkMotion * share) {
+                    EXPECT_EQ(n, subframeCount(pixels / spacing, 1 << 20)) << "eq. 24";
+                }
             }
         }
     }
