@@ -296,7 +296,8 @@ std::vector<int> positionsOf(const ClippedContext& ctx, const SegmentSpec& seg, 
                            .spacing = ctx.job.render.sweep_spacing,
                            .max_positions = ctx.job.render.max_subframes,
                            .exact = ctx.job.render.sweep_time == SweepTime::Exact,
-                           .reach = largestReach(motion.tiles)});
+                           .reach = largestReach(motion.tiles),
+                           .shutter_share = seg.weight});
 }
 
 // The tile plans and, for time_integration auto, which of point subframes and sweep the segment uses:

@@ -10,8 +10,7 @@ namespace clipblur {
 // sweep, estimated from the two plans' counts alone (no render), in units of propagating one fragment
 // triangle in one re-clip. At equal sample spacing the two reach about the same time-sampling error
 // (point subframes put vertices `spacing` pixels apart as sweep positions do), so the cheaper plan is the
-// cheaper at equal error; but point subframes take more than that where motion is short (kinkSamples)
-// and sweep positions do not, so there points are priced at the lower error. Per moving tile
+// cheaper at equal error (both take kinkSamples' floor where motion is short). Per moving tile
 // (max_sweep_pixels > 0) with F fragment triangles and R pixels resolved per re-clip (MotionPlan::resolved):
 //     points  n (F + kPixelCost R)                                            n: its point subframes
 //     sweep   N kSweepReclipCost (F + kPixelCost R) + kPositionCost P R       N: re-clips, P: positions

@@ -79,7 +79,10 @@ std::vector<int> sweepPositions(const Scene& scene, const Projection& projection
                 return farthest;
             },
             [](double x, double y) { return std::max(x, y); });
-        positions[static_cast<std::size_t>(k)] = subframeCount(extent / layout.spacing, layout.max_positions);
+        // Chords integrate exactly, so exact sweep has no kink error to floor.
+        const double wanted = layout.exact ? extent / layout.spacing
+                                           : kinkSamples(extent, layout.shutter_share / count, layout.spacing);
+        positions[static_cast<std::size_t>(k)] = subframeCount(wanted, layout.max_positions);
     }
     return positions;
 }

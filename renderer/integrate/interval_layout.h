@@ -75,12 +75,15 @@ struct SweepLayout {
     int max_positions = 1;
     bool exact = false;
     double reach = std::numeric_limits<double>::infinity();
+    double shutter_share = 1.0;  // the layout's share of the frame's shutter (kinkSamples)
 };
 
 // Sweep integration: the positions of each of the layout's equal intervals of [t0, t1], shared by every fragment
 // (equal times keep shared edges closed) and spaced so that no fragment vertex travels more than `spacing`
 // pixels between them during that interval (pathTravel: along the parabola through its positions at the
-// interval's ends and middle, as a swept fragment moves). An interval where things move slowly (the end of
+// interval's ends and middle, as a swept fragment moves), and at least kinkSamples' floor for the
+// interval's share of the shutter: positions are midpoint samples in time as point subframes are, and
+// a short travel errs as much at a pixel an edge crosses. An interval where things move slowly (the end of
 // a dolly away) gets fewer positions than one where they move fast. Vertices at or behind the camera plane
 // are left out (they are not swept, see SweepInterval::reach), and a vertex counts a travel of at most
 // `reach`: only what travels no farther is swept (a piece of a triangle reaching the camera plane, cut to

@@ -153,7 +153,7 @@ struct SubframePlan {
 // N = ceil(pixels): at least 1, at most max_subframes (the corrected eq. 24, see docs/errata.md).
 int subframeCount(double pixels, int max_subframes, bool* capped = nullptr);
 
-// Point subframes (midpoint samples in time; sweep positions keep eq. 24) for vertices moving `pixels` over an
+// Point subframes or sweep positions (both midpoint samples in time) for vertices moving `pixels` over an
 // interval that holds `share` of the frame's shutter, at `spacing`: what subframeCount takes. Eq. 24's
 // pixels / spacing leaves no gaps, but where an edge crosses a pixel the pixel's value kinks in time as
 // the edge enters and leaves it, and n midpoint samples err there by up to share pixels / (8 n^2) of the

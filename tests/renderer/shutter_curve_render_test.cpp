@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "renderer/propagation/subframes.h"
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
 
@@ -199,24 +200,28 @@ TEST(ShutterCurveRender, TriangleCurveMatchesTheClosedFormWithPointSubframes) {
 
 // Sweep integration: each position s of an interval counts 1 + tilt s, the curve's linear weight there, so
 // for pure translation the sweep is point subframes at its position times with the curve's weights: the
-// bound above with h the time between positions, sweep_spacing / v.
+// bound above with h the time between positions. Each half moves the quad d = T v / 2 = 4 px and holds
+// half the shutter, so it gets max(d, sqrt(kKinkMotion d / 2)) / spacing = 8 / spacing positions (the
+// kink floor, kinkSamples), not eq. 24's 4 / spacing.
 TEST(ShutterCurveRender, TriangleCurveMatchesTheClosedFormWithSweep) {
     const double left = 4.3, width = 12.25, v = 16.0, T = 0.5;
     const std::vector<double> expected = analytic({T, true}, left, width, v);
+    const double d = 0.5 * T * v;
     for (double spacing : {0.25, 0.05}) {
         RenderJob job = jobWith(Method::Clipped, TimeIntegration::Sweep);
         job.shutter = {0.0, T, kTriangle};
         job.scene.objects.push_back(slidingQuad(left, width, v, 0.0));
         job.render.sweep_spacing = spacing;
         const RenderResult r = renderFrame(job, 0);
-        const double h = spacing / v;
+        const int n = 2 * static_cast<int>(std::lround(std::max(d, std::sqrt(kKinkMotion * d / 2.0)) / spacing));
+        const double h = T / n;
         EXPECT_LT(maxError(r, expected), (1.0 / 3.0 + 0.5) * h * h * v / T + 1e-6) << "spacing " << spacing;
-        // The same times as point subframes T v / spacing apart (one re-clip per half, its positions
-        // spaced `spacing` px): the same image up to float storage (1e-6, as above).
+        // The same times as n point subframes (one re-clip per half, its positions h apart): the same
+        // image up to float storage (1e-6, as above).
         RenderJob points = jobWith(Method::Clipped, TimeIntegration::Subframes);
         points.shutter = job.shutter;
         points.scene.objects = job.scene.objects;
-        points.render.subframes = static_cast<int>(std::lround(T * v / spacing));
+        points.render.subframes = n;
         const RenderResult point_render = renderFrame(points, 0);
         const auto& point_red = point_render.image.find("R")->values;
         const std::vector<double> point_image(point_red.begin(), point_red.end());

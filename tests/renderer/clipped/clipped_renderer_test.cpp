@@ -140,16 +140,20 @@ TEST(ClippedRenderer, TranslatingQuadConvergesToExactTimeIntegratedCoverage) {
 
 // An edge that moves a few pixels: eq. 24's count (one subframe a pixel) leaves the pixels it crosses
 // up to 1 / (8 |v|) off, a step of 1/24 of the contrast here, visible at 8 bits. The automatic count of
-// point subframes holds it to 1/256 (kinkSamples). 1e-6: float storage.
+// point subframes, and of sweep positions, holds it to 1/256 (kinkSamples). 1e-6: float storage.
 TEST(ClippedRenderer, ShortMotionStepsNoMoreThanA256thOfTheContrast) {
     const double x0 = 6.3, y0 = 5.2, x1 = 19.6, y1 = 24.9;
     const glm::dvec2 v(3.0, 0.0);
     const std::vector<double> expected = translatingExpected(x0, y0, x1, y1, v);
-    {
+    for (const TimeIntegration integration : {TimeIntegration::Subframes, TimeIntegration::Sweep}) {
         RenderJob job = clippedJob();
         job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
-        job.render.time_integration = TimeIntegration::Subframes;
-        EXPECT_LT(maxError(renderFrame(job, 0), expected), 1.0 / 256.0 + 1e-6);
+        job.render.time_integration = integration;
+        const RenderResult r = renderFrame(job, 0);
+        EXPECT_LT(maxError(r, expected), 1.0 / 256.0 + 1e-6) << static_cast<int>(integration);
+        if (integration == TimeIntegration::Sweep) {
+            EXPECT_EQ(r.stats.clipped().subframes_max_per_tile, 1) << "one re-clip: the positions alone";
+        }
     }
     RenderJob job = clippedJob();
     job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));

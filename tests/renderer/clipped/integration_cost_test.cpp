@@ -41,7 +41,8 @@ Choice choiceOf(const RenderResult& r) {
 // The three motions below, each over the black background (nothing still, so no backdrop), with the
 // answer read off the counts of the two plans rather than from the cost model's constants:
 //   slow: a quad moving half a pixel: 4 point subframes (the kink floor, kinkSamples: sqrt(32 x 0.5))
-//         and one sweep re-clip with one position, which costs less than 4 point re-clips, so sweep;
+//         and one sweep re-clip with as many positions (the same floor), which costs less than 4 point
+//         re-clips, so sweep;
 //   pan:  a quad moving 24 px alone: 28 point subframes on its tiles (sqrt(32 x 24) = 27.7), one sweep
 //         re-clip (translation leaves no path bend and there is no relative motion), so sweep;
 //   crossing: two quads passing each other 12 px each way: 20 point subframes (sqrt(32 x 12) = 19.6),

@@ -7,6 +7,7 @@
 #include "io/job_loader.h"
 #include "renderer/clipped/error_target.h"
 #include "renderer/clipped/time_error.h"
+#include "renderer/propagation/subframes.h"
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
 #include "support/translating_coverage.h"
@@ -248,14 +249,15 @@ TEST(ErrorTarget, CoarseTargetsAreMeasuredAgainstThePilot) {
     }
 }
 
-// A quad moving under a pixel over the shutter: one sweep position per interval at the pilot's 1 px, so
-// the pilot has no estimate, and a render 4x coarser does the same work. That render is the answer: two
-// renders in all (no refined pilot), and the bits of a plain render at the default spacing.
+// A quad moving 0.027 px over the shutter, under the 1 / kKinkMotion px that the kink floor (kinkSamples)
+// gives a second position: one sweep position per interval at the pilot's 1 px, so the pilot has no
+// estimate, and a render 4x coarser does the same work. That render is the answer: two renders in all
+// (no refined pilot), and the bits of a plain render at the default spacing.
 TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
     RenderJob job = squareFilmJob();
     job.render.method = Method::Clipped;
     job.render.time_integration = TimeIntegration::Sweep;
-    job.scene.objects.push_back(movingQuad(kX0, kY0, kX1, kY1, 6.0, glm::dvec2(0.6, 0.3)));
+    job.scene.objects.push_back(movingQuad(kX0, kY0, kX1, kY1, 6.0, glm::dvec2(0.024, 0.012)));
     const RenderResult plain = renderFrame(job, 0);
     ASSERT_EQ(plain.stats.clipped().estimated_error, 0.0) << "the scene must leave the pilot without an estimate";
     job.render.error_target = 1e-2;
@@ -266,15 +268,16 @@ TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
     for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
 }
 
-// A quad moving 1.9 px: at the pilot's 1 px two sweep positions per interval (no estimate; its exact
-// error is 5.6e-3), at every spacing from 2 px one (2.5e-2). For a target of 6e-3 every render coarser
-// than that misses by 4x, and the correction from the first one, at order 1, lands below the pilot's
-// spacing, where nothing is judged against the pilot any more. Bisection between the pilot and that render
-// finds only spacings under the quad's travel (1.94 px), which do the pilot's work: the answer has the
-// pilot's bits and an exact error within the issue's 0.5 .. 1.5 of the target.
+// A quad moving 0.097 px: the kink floor (kinkSamples) gives it sqrt(kKinkMotion 0.097) = 1.76 px of
+// travel, so at the pilot's 1 px two sweep positions per interval (no estimate; its exact error is
+// 2.5e-6), at every spacing from 1.76 px one (9.9e-6). For a target of 3e-6 every render coarser than
+// that misses by 4x, and the correction from the first one, at order 1, lands below the pilot's spacing,
+// where nothing is judged against the pilot any more. Bisection between the pilot and that render finds
+// only spacings under 1.76 px, which do the pilot's work: the answer has the pilot's bits and an exact
+// error within the issue's 0.5 .. 1.5 of the target.
 TEST(ErrorTarget, EveryCoarserSpacingMissingTheTargetLeavesThePilotsWork) {
-    constexpr double kTarget = 6e-3;
-    const glm::dvec2 v(1.9, 0.4);
+    constexpr double kTarget = 3e-6;
+    const glm::dvec2 v(0.095, 0.02);
     RenderJob job = squareFilmJob();
     job.render.method = Method::Clipped;
     job.render.time_integration = TimeIntegration::Sweep;
@@ -283,7 +286,7 @@ TEST(ErrorTarget, EveryCoarserSpacingMissingTheTargetLeavesThePilotsWork) {
     job.render.error_target = kTarget;
     const RenderResult r = renderFrame(job, 0);
     const ErrorTargetStats& stats = *r.stats.clipped().target;
-    EXPECT_LT(stats.sweep_spacing, 1.94);
+    EXPECT_LT(stats.sweep_spacing, std::sqrt(kKinkMotion * glm::length(v)));
     for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
     const std::vector<glm::dvec2> quad{{kX0, kY0}, {kX1, kY0}, {kX1, kY1}, {kX0, kY1}};
     double sum = 0.0;

@@ -109,11 +109,12 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
 
 // A vertex just in front of the camera plane travels thousands of pixels, but no tile sweeps a fragment
 // that travels farther than its reach (SweepInterval::sweeps), so a vertex counts at most `reach`. Here
-// the two far vertices travel focal / 5 x 0.5 = 24.7 px and the near one (depth 0.05) 100x that: without
-// a reach it sets the count (2,470 positions), with a reach of 40 px the count is 40, and with 10 px,
-// which all three exceed, 10. Exact sweep: the same triangle also coming 0.04 nearer (the near vertex
-// from depth 0.05 to 0.01) bends the near vertex's path; a path of travel at most R strays at most R / 2 from its chord, so bends count up to
-// sqrt(R / 2 / kBendTolerance): 16 positions for R = 8 (the far vertices' bends are under 2).
+// the two far vertices travel focal / 5 x 0.5 = 49.4 px and the near one (depth 0.05) 100x that: without
+// a reach it sets the count (4,945 positions), with a reach of 40 px the count is 40, and with 10 px,
+// which all three exceed, the kink floor of a 10 px travel (kinkSamples): ceil(sqrt(kKinkMotion 10)) = 18.
+// Exact sweep: the same triangle also coming 0.04 nearer (the near vertex from depth 0.05 to 0.01) bends
+// the near vertex's path; a path of travel at most R strays at most R / 2 from its chord, so bends count
+// up to sqrt(R / 2 / kBendTolerance): 16 positions for R = 8 (the far vertices' bends are under 2).
 TEST(SweepPositions, VertexTravelCountsUpToTheReach) {
     const Scene scene = slidingTriangleScene({0, 0.02, 0.05});
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
@@ -126,7 +127,7 @@ TEST(SweepPositions, VertexTravelCountsUpToTheReach) {
     };
     EXPECT_EQ(count(std::numeric_limits<double>::infinity()), static_cast<int>(std::ceil(focal / 0.05 * 0.5)));
     EXPECT_EQ(count(40.0), 40);
-    EXPECT_EQ(count(10.0), 10);
+    EXPECT_EQ(count(10.0), static_cast<int>(std::ceil(std::sqrt(kKinkMotion * 10.0))));
 
     Scene dolly = scene;
     dolly.objects[0].transform.back().translate = glm::dvec3(0.5, 0.0, -0.04);
