@@ -65,13 +65,15 @@ TEST(RenderWindow, WindowOutsideTheFilmIsARenderError) {
 }
 
 // A window render is the whole render's pixels in that window, bit for bit, and carries the window as
-// its data window. Shard windows of 3 (bands) and 4 (2 x 2) shards cut through render tiles.
+// its data window. Shard windows of 3 (bands) and 4 (2 x 2) shards cut through render tiles. The whole
+// render is audited; shards whose every pixel equals it need not be (the audit was 60 % of their time).
 class WindowedMethod : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(WindowedMethod, ShardWindowsEqualTheWholeRender) {
     RenderJob job = smallMovingJob(GetParam());
     const Image whole = renderFrame(job, 0).image;
     ASSERT_EQ(whole.window, PixelBounds::sized(0, 0, 67, 41));
+    job.render.audit = false;
     for (const int count : {3, 4}) {
         for (int index = 0; index < count; ++index) {
             const PixelBounds w = shardWindow(67, 41, {index, count});
