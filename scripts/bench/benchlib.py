@@ -163,6 +163,18 @@ def image_error(reference, image):
     return result
 
 
+def earlier_references(references_from, stem, *names):
+    """The images `names` of scene `stem` under an earlier run's --out (its renders/<stem>/), for a run
+    that reuses its references (--references-from); None when there is no earlier run to reuse."""
+    if not references_from:
+        return None
+    paths = [Path(references_from) / "renders" / stem / n for n in names]
+    missing = [p for p in paths if not p.exists()]
+    if missing:
+        raise BenchError(f"no reference {missing[0]}")
+    return paths
+
+
 def reference_image(clipblur, config, overrides, spp, cache_dir, threads=0, refresh=False, log=print):
     """Converged reference: stochastic at `spp` samples, cached under the config hash of the job with
     every override applied (film size, method, samples, seed), so any change of scene or settings

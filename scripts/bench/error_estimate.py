@@ -130,14 +130,10 @@ def run_targets(clipblur, name, config, args, folder):
     stem = name.replace("/", "_")
     fine = {"render.sweep_spacing": args.reference_spacing, "render.max_subframes": 4096}
     # References are plain renders (no target): another run's at the same size may serve (--references-from).
-    refs = Path(args.references_from) / "renders" / stem if args.references_from else folder / stem
-    reference, check = refs / "target_reference.exr", refs / "target_reference_check.exr"
-    if args.search_only:
-        pass
-    elif args.references_from:
-        if not (reference.exists() and check.exists()):
-            raise benchlib.BenchError(f"no reference under {refs}")
-    else:
+    names = ("target_reference.exr", "target_reference_check.exr")
+    earlier = None if args.search_only else benchlib.earlier_references(args.references_from, stem, *names)
+    reference, check = earlier or (folder / stem / n for n in names)
+    if not args.search_only and not earlier:
         benchlib.render(clipblur, config, dict(base, **fine), reference, args.threads)
         benchlib.render(clipblur, config, {**base, **fine, "render.sweep_spacing": 2 * args.reference_spacing},
                         check, args.threads)

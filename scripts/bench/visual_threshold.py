@@ -68,10 +68,9 @@ def run_scene(clipblur, name, config, args, folder):
                                 args.threads)
         return image, stats
 
-    if args.references_from:
-        reference = Path(args.references_from) / "renders" / stem.name / "reference.exr"
-        if not reference.exists():
-            raise benchlib.BenchError(f"no reference {reference}")
+    earlier = benchlib.earlier_references(args.references_from, stem.name, "reference.exr")
+    if earlier:
+        reference = earlier[0]
     else:
         # Automatic re-clips --refine x as dense as a default render's in every tile of every shutter
         # segment (a fixed count would be shared out over the segments), uncapped.
