@@ -145,9 +145,13 @@ TEST(ClippedRenderer, ShortMotionStepsNoMoreThanA256thOfTheContrast) {
     const double x0 = 6.3, y0 = 5.2, x1 = 19.6, y1 = 24.9;
     const glm::dvec2 v(3.0, 0.0);
     const std::vector<double> expected = translatingExpected(x0, y0, x1, y1, v);
-    for (const TimeIntegration integration : {TimeIntegration::Subframes, TimeIntegration::Sweep}) {
+    const auto quadJob = [&] {
         RenderJob job = clippedJob();
         job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
+        return job;
+    };
+    for (const TimeIntegration integration : {TimeIntegration::Subframes, TimeIntegration::Sweep}) {
+        RenderJob job = quadJob();
         job.render.time_integration = integration;
         const RenderResult r = renderFrame(job, 0);
         EXPECT_LT(maxError(r, expected), 1.0 / 256.0 + 1e-6) << static_cast<int>(integration);
@@ -155,8 +159,7 @@ TEST(ClippedRenderer, ShortMotionStepsNoMoreThanA256thOfTheContrast) {
             EXPECT_EQ(r.stats.clipped().subframes_max_per_tile, 1) << "one re-clip: the positions alone";
         }
     }
-    RenderJob job = clippedJob();
-    job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
+    RenderJob job = quadJob();
     job.render.subframes = 3;  // eq. 24's count
     // Up to 1/24 where an edge starts; this quad's start at 0.3 and 0.6 of a pixel gives 0.027.
     EXPECT_GT(maxError(renderFrame(job, 0), expected), 6.0 / 256.0) << "the step the floor removes";
