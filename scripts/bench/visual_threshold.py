@@ -58,6 +58,15 @@ def display_difference(reference, image):
             "over_one_percent": over[0] if over else 0.0}
 
 
+def parse_setting(text):
+    """'label:key=value,key=value' as (label, overrides); values stay text (benchlib passes --set)."""
+    label, _, pairs = text.partition(":")
+    overrides = dict(p.split("=", 1) for p in pairs.split(",") if p)
+    if not label or not overrides:
+        raise SystemExit(f"--settings: '{text}' is not label:key=value[,key=value...]")
+    return label, overrides
+
+
 def run_scene(clipblur, name, config, args, folder):
     base = benchlib.base_overrides(args.width, args.height)
     stem = folder / name.replace("/", "_")
@@ -79,7 +88,7 @@ def run_scene(clipblur, name, config, args, folder):
                                              "render.reclip_spacing": 1.0 / args.refine,
                                              "render.max_subframes": 4096})
     settings = ([("default", {})] + [(f"spacing {s:g}", {"render.sweep_spacing": s}) for s in args.spacings] +
-                [(f"target {t:g}", {"render.error_target": t}) for t in args.targets])
+                [(f"target {t:g}", {"render.error_target": t}) for t in args.targets] + args.settings)
     rows = []
     for label, overrides in settings:
         image, stats = clipped(label.replace(" ", "_"), overrides)
@@ -104,6 +113,8 @@ def main():
     ap.add_argument("--targets", default="1e-2,3e-3,1e-3,3e-4")
     ap.add_argument("--spacings", default="", help="comma-separated render.sweep_spacing values (px) to "
                                                    "render beside the default")
+    ap.add_argument("--settings", default="", help="more settings to judge, ';'-separated, each "
+                    "label:key=value[,key=value...], e.g. 'exact:render.sweep_time=exact'")
     ap.add_argument("--peer-spp", type=int, default=256, help="stochastic samples for context (0: none)")
     ap.add_argument("--reference-spacing", type=float, default=0.05, help="px")
     ap.add_argument("--refine", type=int, default=4, help="the reference's re-clips over the auto ones")
@@ -115,6 +126,7 @@ def main():
     args = ap.parse_args()
     args.targets = [float(t) for t in args.targets.split(",") if t]
     args.spacings = [float(s) for s in args.spacings.split(",") if s]
+    args.settings = [parse_setting(s) for s in args.settings.split(";") if s]
     clipblur = benchlib.find_clipblur(args.clipblur)
     scenes = scene_configs(args.scenes)
     if not args.scenes:
