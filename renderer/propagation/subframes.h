@@ -159,9 +159,11 @@ int subframeCount(double pixels, int max_subframes, bool* capped = nullptr);
 // the edge enters and leaves it, and n midpoint samples err there by up to share pixels / (8 n^2) of the
 // edge's contrast: eq. 24 leaves a short motion 1 / (8 pixels), an eighth of the contrast for a motion
 // of one pixel, a visible step. So n is at least sqrt(kKinkMotion share pixels) / spacing, which holds
-// every motion to the error eq. 24 leaves at kKinkMotion px (1/256 of the contrast at spacing 1, one
-// code of 8 bits, falling as spacing^2). Test: Subframes.KinkSamplesHoldAnEdgeCrossingAPixelToA256thOfItsContrast.
-constexpr double kKinkMotion = 32.0;  // px
+// every motion to the error eq. 24 leaves at kKinkMotion px: 1/512 of the contrast at spacing 1, falling
+// as spacing^2, because an 8-bit sRGB display steps up to 12.92x finer than linear near black, where
+// 1/256 of a bright edge's contrast showed as 5 code values (docs/performance.md, "Kink floor held to
+// the display"). Test: Subframes.KinkSamplesHoldAnEdgeCrossingAPixelToA512thOfItsContrast.
+constexpr double kKinkMotion = 64.0;  // px
 double kinkSamples(double pixels, double share, double spacing);
 
 // Plans the tile from the fragments whose swept box overlaps it.

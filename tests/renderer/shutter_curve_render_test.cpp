@@ -201,8 +201,8 @@ TEST(ShutterCurveRender, TriangleCurveMatchesTheClosedFormWithPointSubframes) {
 // Sweep integration: each position s of an interval counts 1 + tilt s, the curve's linear weight there, so
 // for pure translation the sweep is point subframes at its position times with the curve's weights: the
 // bound above with h the time between positions. Each half moves the quad d = T v / 2 = 4 px and holds
-// half the shutter, so it gets max(d, sqrt(kKinkMotion d / 2)) / spacing = 8 / spacing positions (the
-// kink floor, kinkSamples), not eq. 24's 4 / spacing.
+// half the shutter, so it gets max(d, sqrt(kKinkMotion d / 2)) / spacing = 11.3 / spacing positions,
+// rounded up (the kink floor, kinkSamples), not eq. 24's 4 / spacing.
 TEST(ShutterCurveRender, TriangleCurveMatchesTheClosedFormWithSweep) {
     const double left = 4.3, width = 12.25, v = 16.0, T = 0.5;
     const std::vector<double> expected = analytic({T, true}, left, width, v);
@@ -213,7 +213,8 @@ TEST(ShutterCurveRender, TriangleCurveMatchesTheClosedFormWithSweep) {
         job.scene.objects.push_back(slidingQuad(left, width, v, 0.0));
         job.render.sweep_spacing = spacing;
         const RenderResult r = renderFrame(job, 0);
-        const int n = 2 * static_cast<int>(std::lround(std::max(d, std::sqrt(kKinkMotion * d / 2.0)) / spacing));
+        const int n =
+            2 * static_cast<int>(std::ceil(std::max(d, std::sqrt(kKinkMotion * d / 2.0)) / spacing - 1e-6));
         const double h = T / n;
         EXPECT_LT(maxError(r, expected), (1.0 / 3.0 + 0.5) * h * h * v / T + 1e-6) << "spacing " << spacing;
         // The same times as n point subframes (one re-clip per half, its positions h apart): the same

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include "renderer/propagation/subframes.h"
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
 #include "support/translating_coverage.h"
@@ -132,16 +133,16 @@ TEST(ClippedRenderer, TranslatingQuadConvergesToExactTimeIntegratedCoverage) {
     job.scene.objects.push_back(movingQuad(x0, y0, x1, y1, 6.0, v));
     job.render.time_integration = TimeIntegration::Subframes;  // the automatic count
     const RenderResult r = renderFrame(job, 0);
-    // Eq. 24 would take ceil(|v|) = 12; the kink floor (kinkSamples) sqrt(32 |v|) = 19.6.
-    const int n = static_cast<int>(std::ceil(std::sqrt(32.0 * glm::length(v))));
+    // Eq. 24 would take ceil(|v|) = 12; the kink floor (kinkSamples) sqrt(kKinkMotion |v|) = 27.7.
+    const int n = static_cast<int>(std::ceil(std::sqrt(kKinkMotion * glm::length(v))));
     EXPECT_EQ(r.stats.clipped().subframes_max_per_tile, n);
     EXPECT_LT(maxError(r, expected), bound(n));
 }
 
 // An edge that moves a few pixels: eq. 24's count (one subframe a pixel) leaves the pixels it crosses
 // up to 1 / (8 |v|) off, a step of 1/24 of the contrast here, visible at 8 bits. The automatic count of
-// point subframes, and of sweep positions, holds it to 1/256 (kinkSamples). 1e-6: float storage.
-TEST(ClippedRenderer, ShortMotionStepsNoMoreThanA256thOfTheContrast) {
+// point subframes, and of sweep positions, holds it to 1/512 (kinkSamples). 1e-6: float storage.
+TEST(ClippedRenderer, ShortMotionStepsNoMoreThanA512thOfTheContrast) {
     const double x0 = 6.3, y0 = 5.2, x1 = 19.6, y1 = 24.9;
     const glm::dvec2 v(3.0, 0.0);
     const std::vector<double> expected = translatingExpected(x0, y0, x1, y1, v);
@@ -154,7 +155,7 @@ TEST(ClippedRenderer, ShortMotionStepsNoMoreThanA256thOfTheContrast) {
         RenderJob job = quadJob();
         job.render.time_integration = integration;
         const RenderResult r = renderFrame(job, 0);
-        EXPECT_LT(maxError(r, expected), 1.0 / 256.0 + 1e-6) << static_cast<int>(integration);
+        EXPECT_LT(maxError(r, expected), 1.0 / 512.0 + 1e-6) << static_cast<int>(integration);
         if (integration == TimeIntegration::Sweep) {
             EXPECT_EQ(r.stats.clipped().subframes_max_per_tile, 1) << "one re-clip: the positions alone";
         }

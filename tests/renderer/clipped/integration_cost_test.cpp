@@ -1,8 +1,11 @@
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include "renderer/propagation/subframes.h"
 #include "renderer/render.h"
 #include "renderer/test_scenes.h"
 
@@ -40,13 +43,14 @@ Choice choiceOf(const RenderResult& r) {
 
 // The three motions below, each over the black background (nothing still, so no backdrop), with the
 // answer read off the counts of the two plans rather than from the cost model's constants:
-//   slow: a quad moving half a pixel: 4 point subframes (the kink floor, kinkSamples: sqrt(32 x 0.5))
-//         and one sweep re-clip with as many positions (the same floor), which costs less than 4 point
-//         re-clips, so sweep;
-//   pan:  a quad moving 24 px alone: 28 point subframes on its tiles (sqrt(32 x 24) = 27.7), one sweep
+// (floored: the kink floor of a motion of d px, kinkSamples, computed here at kKinkMotion 64):
+//   slow: a quad moving half a pixel: 6 point subframes (sqrt(64 x 0.5) = 5.7) and one sweep re-clip
+//         with as many positions (the same floor), which costs less than 6 point re-clips, so sweep;
+//   pan:  a quad moving 24 px alone: 40 point subframes on its tiles (sqrt(64 x 24) = 39.2), one sweep
 //         re-clip (translation leaves no path bend and there is no relative motion), so sweep;
-//   crossing: two quads passing each other 12 px each way: 20 point subframes (sqrt(32 x 12) = 19.6),
-//         but 24 sweep re-clips (their relative motion) on every moving tile, so points.
+//   crossing: two quads passing each other 12 px each way: 28 point subframes (sqrt(64 x 12) = 27.7),
+//         but 24 sweep re-clips (their relative motion, one a pixel) on every moving tile, so points.
+int floored(double d) { return static_cast<int>(std::ceil(std::max(d, std::sqrt(kKinkMotion * d)))); }
 Object slowQuad() { return movingQuad(8, 8, 20, 20, 4.0, {0.5, 0.0}); }
 Object panQuad() { return movingQuad(2, 8, 12, 20, 4.0, {24.0, 0.0}); }
 Object leftQuad() { return movingQuad(2, 6, 12, 16, 4.0, {12.0, 0.0}); }
@@ -60,9 +64,9 @@ struct AutoCase {
 };
 
 std::vector<AutoCase> cases() {
-    return {{"slow", {slowQuad()}, TimeIntegration::Sweep, 4, 1},
-            {"pan", {panQuad()}, TimeIntegration::Sweep, 28, 1},
-            {"crossing", {leftQuad(), rightQuad()}, TimeIntegration::Subframes, 20, 24}};
+    return {{"slow", {slowQuad()}, TimeIntegration::Sweep, floored(0.5), 1},
+            {"pan", {panQuad()}, TimeIntegration::Sweep, floored(24.0), 1},
+            {"crossing", {leftQuad(), rightQuad()}, TimeIntegration::Subframes, floored(12.0), 24}};
 }
 
 // The premise of each case: the explicit methods' plans have the counts the case is built on.

@@ -249,15 +249,15 @@ TEST(ErrorTarget, CoarseTargetsAreMeasuredAgainstThePilot) {
     }
 }
 
-// A quad moving 0.027 px over the shutter, under the 1 / kKinkMotion px that the kink floor (kinkSamples)
-// gives a second position: one sweep position per interval at the pilot's 1 px, so the pilot has no
+// A quad moving 0.013 px over the shutter, under the 1 / kKinkMotion px that the kink floor
+// (kinkSamples) gives a second position: one sweep position per interval at the pilot's 1 px, so the pilot has no
 // estimate, and a render 4x coarser does the same work. That render is the answer: two renders in all
 // (no refined pilot), and the bits of a plain render at the default spacing.
 TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
     RenderJob job = squareFilmJob();
     job.render.method = Method::Clipped;
     job.render.time_integration = TimeIntegration::Sweep;
-    job.scene.objects.push_back(movingQuad(kX0, kY0, kX1, kY1, 6.0, glm::dvec2(0.024, 0.012)));
+    job.scene.objects.push_back(movingQuad(kX0, kY0, kX1, kY1, 6.0, glm::dvec2(0.012, 0.006)));
     const RenderResult plain = renderFrame(job, 0);
     ASSERT_EQ(plain.stats.clipped().estimated_error, 0.0) << "the scene must leave the pilot without an estimate";
     job.render.error_target = 1e-2;
@@ -268,16 +268,16 @@ TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
     for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(r.image.find(c)->values, plain.image.find(c)->values) << c;
 }
 
-// A quad moving 0.097 px: the kink floor (kinkSamples) gives it sqrt(kKinkMotion 0.097) = 1.76 px of
-// travel, so at the pilot's 1 px two sweep positions per interval (no estimate; its exact error is
-// 2.5e-6), at every spacing from 1.76 px one (9.9e-6). For a target of 3e-6 every render coarser than
+// A quad moving 0.048 px: the kink floor (kinkSamples) gives it sqrt(kKinkMotion 0.048) = 1.76 px
+// of travel, so at the pilot's 1 px two sweep positions per interval (no estimate; its exact error is
+// 6.2e-7), at every spacing from 1.76 px one (2.5e-6). For a target of 6e-7 every render coarser than
 // that misses by 4x, and the correction from the first one, at order 1, lands below the pilot's spacing,
 // where nothing is judged against the pilot any more. Bisection between the pilot and that render finds
 // only spacings under 1.76 px, which do the pilot's work: the answer has the pilot's bits and an exact
 // error within the issue's 0.5 .. 1.5 of the target.
 TEST(ErrorTarget, EveryCoarserSpacingMissingTheTargetLeavesThePilotsWork) {
-    constexpr double kTarget = 3e-6;
-    const glm::dvec2 v(0.095, 0.02);
+    constexpr double kTarget = 6e-7;
+    const glm::dvec2 v(0.0474, 0.01);
     RenderJob job = squareFilmJob();
     job.render.method = Method::Clipped;
     job.render.time_integration = TimeIntegration::Sweep;

@@ -19,7 +19,8 @@ using testing::addTransformKey;
 // The positions one interval needs by its definition, from the test's own slow projection: the farthest
 // a vertex gets from its interval-start position along the parabola through its exact positions at the
 // interval's start, middle and end (chord + twice the middle's distance from the chord's midpoint bounds
-// that parabola), over the spacing, rounded up. Exact sweep's by its definition: n chords stray by
+// that parabola), at least the kink floor of that travel for the interval's share of the shutter,
+// max(d, sqrt(kKinkMotion share d)), over the spacing, rounded up. Exact sweep's by its definition: n chords stray by
 // sagitta / n^2 (the sagitta: the middle's distance from the chord's midpoint), so kBendTolerance x
 // spacing^2 needs sqrt(sagitta / kBendTolerance) / spacing of them.
 int expectedPositions(const Scene& scene, const Projection& projection, double t0, double t1, double spacing,
@@ -34,6 +35,7 @@ int expectedPositions(const Scene& scene, const Projection& projection, double t
         const double sagitta = glm::length(0.5 * (a + e) - m);
         farthest = std::max(farthest, exact ? std::sqrt(sagitta / kBendTolerance) : glm::length(e - a) + 2.0 * sagitta);
     }
+    if (!exact) farthest = std::max(farthest, std::sqrt(kKinkMotion * (t1 - t0) * farthest));
     return std::max(1, static_cast<int>(std::ceil(farthest / spacing)));
 }
 
@@ -89,8 +91,9 @@ TEST(SweepPositions, FollowEachIntervalsOwnMotion) {
     for (int k = 0; k < kIntervals; ++k)
         EXPECT_EQ(positions[k], expectedPositions(scene, projection, k / double(kIntervals), (k + 1) / double(kIntervals), kSpacing))
             << "interval " << k;
-    // Depth doubles over the shutter, so the first interval moves about (z1 / z0)^2 = 4x the last.
-    EXPECT_GT(positions.front(), 3 * positions.back());
+    // Depth doubles over the shutter, so the first interval moves about (z1 / z0)^2 = 4x the last, and
+    // gets more than sqrt(4) x its positions where the kink floor (a square root of the travel) holds.
+    EXPECT_GT(positions.front(), 2 * positions.back());
 }
 
 // Vertices behind the camera plane at any of an interval's three times are not swept, so they must not
@@ -100,18 +103,19 @@ TEST(SweepPositions, IgnoreVerticesBehindTheCamera) {
     const Projection projection(scene.film.width, scene.film.height, scene.camera.vfov_degrees);
     const WholeTriangle whole;
     const FragmentLayers& layers = whole.layers;
-    // The two front vertices move 0.5 world units at depth 5: focal / 5 * 0.5 px, the same for both.
-    const double focal = focalPixels(scene);
+    // The two front vertices move 0.5 world units at depth 5: d = focal / 5 * 0.5 = 49.4 px, the same for
+    // both, under kKinkMotion, so the count is the kink floor sqrt(kKinkMotion d) = 56.2.
+    const double d = focalPixels(scene) / 5.0 * 0.5;
     const std::vector<int> positions = sweepPositions(
         scene, projection, layers, {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 1000});
-    EXPECT_EQ(positions[0], static_cast<int>(std::ceil(focal / 5.0 * 0.5)));
+    EXPECT_EQ(positions[0], static_cast<int>(std::ceil(std::sqrt(kKinkMotion * d))));
 }
 
 // A vertex just in front of the camera plane travels thousands of pixels, but no tile sweeps a fragment
 // that travels farther than its reach (SweepInterval::sweeps), so a vertex counts at most `reach`. Here
 // the two far vertices travel focal / 5 x 0.5 = 49.4 px and the near one (depth 0.05) 100x that: without
-// a reach it sets the count (4,945 positions), with a reach of 40 px the count is 40, and with 10 px,
-// which all three exceed, the kink floor of a 10 px travel (kinkSamples): ceil(sqrt(kKinkMotion 10)) = 18.
+// a reach it sets the count (4,945 positions), with a reach of 80 px the count is 80, and with 10 px,
+// which all three exceed, the kink floor of a 10 px travel (kinkSamples): ceil(sqrt(kKinkMotion 10)) = 26.
 // Exact sweep: the same triangle also coming 0.04 nearer (the near vertex from depth 0.05 to 0.01) bends
 // the near vertex's path; a path of travel at most R strays at most R / 2 from its chord, so bends count
 // up to sqrt(R / 2 / kBendTolerance): 16 positions for R = 8 (the far vertices' bends are under 2).
@@ -126,7 +130,7 @@ TEST(SweepPositions, VertexTravelCountsUpToTheReach) {
                               {.t0 = 0.0, .t1 = 1.0, .intervals = 1, .spacing = 1.0, .max_positions = 100000, .reach = reach})[0];
     };
     EXPECT_EQ(count(std::numeric_limits<double>::infinity()), static_cast<int>(std::ceil(focal / 0.05 * 0.5)));
-    EXPECT_EQ(count(40.0), 40);
+    EXPECT_EQ(count(80.0), 80);
     EXPECT_EQ(count(10.0), static_cast<int>(std::ceil(std::sqrt(kKinkMotion * 10.0))));
 
     Scene dolly = scene;
