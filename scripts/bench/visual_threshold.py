@@ -61,10 +61,10 @@ def display_difference(reference, image):
 def parse_setting(text):
     """'label:key=value,key=value' as (label, overrides); values stay text (benchlib passes --set)."""
     label, _, pairs = text.partition(":")
-    overrides = dict(p.split("=", 1) for p in pairs.split(",") if p)
-    if not label or not overrides:
+    pairs = [p for p in pairs.split(",") if p]
+    if not label or not pairs or not all("=" in p for p in pairs):
         raise SystemExit(f"--settings: '{text}' is not label:key=value[,key=value...]")
-    return label, overrides
+    return label, dict(p.split("=", 1) for p in pairs)
 
 
 def run_scene(clipblur, name, config, args, folder):
