@@ -249,8 +249,8 @@ TEST(ErrorTarget, CoarseTargetsAreMeasuredAgainstThePilot) {
     }
 }
 
-// A quad moving 0.013 px over the shutter, under the 1 / kKinkMotion px that the kink floor
-// (kinkSamples) gives a second position: one sweep position per interval at the pilot's 1 px, so the pilot has no
+// A quad moving 0.013 px over the shutter, under the 1 / kKinkMotion px that the kink floor (kinkSamples)
+// gives a second position: one sweep position per interval at the pilot's 1 px, so the pilot has no
 // estimate, and a render 4x coarser does the same work. That render is the answer: two renders in all
 // (no refined pilot), and the bits of a plain render at the default spacing.
 TEST(ErrorTarget, ProbeThatDoesThePilotsWorkIsTheAnswer) {
