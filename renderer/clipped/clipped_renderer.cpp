@@ -605,6 +605,7 @@ RenderResult renderClipped(const RenderJob& job, int frame, const RenderCallback
         whole ? FrameSetup{motion, *whole, setup.adjacency, setup.shader, setup.projection, setup.grid, callbacks} : setup,
         mid_stats);
     writeWindow(ctx, sums, mid, result);
+    result.level_differences = std::move(sums.levels);
 
     if (mid) stats.mid = mid_stats;
     if (settings.audit)

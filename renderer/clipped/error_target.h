@@ -33,8 +33,9 @@ namespace clipblur {
 // automatic re-clips are spaced by the spacing too (finer than a pixel as well), so a render coarser than the
 // pilot is judged with its re-clip error; the pilot's own is not seen. A sweep
 // render judged by its own estimate (which sees sweep positions, not re-clips) is checked against one
-// with re-clips at half the spacing (render.reclip_spacing): their difference, less both estimates in
-// quadrature, is the change in re-clip error, bounded by order 1 in the re-clip count. The finer render is
+// with re-clips at half the spacing (render.reclip_spacing; a quarter where half leaves the count as it
+// was): their difference, less in quadrature how much their estimated time errors differ per pixel
+// (timeErrorDifference), is the change in re-clip error, bounded by order 1 in the re-clip count. The finer render is
 // the answer where the first misses by more than 4/3 at that bound; where the finer one misses too, a
 // third render, re-clips halved again, measures the order (1 .. 2: 2 is the midpoint rule's), the coarser
 // of the two finer renders that meets the target at it is the answer, and where neither does, one more
@@ -60,5 +61,11 @@ double spacingForTarget(double setting, double estimate, double target, double c
 
 // RMS over R, G and B of `image` minus `fine` over image's window (fine's window must hold it).
 double rmsDifference(const Image& fine, const Image& image);
+
+// RMS over R, G and B of the difference of two renders' estimated time errors per pixel
+// (RenderResult::level_differences / (3^p - 1), time_error.h) over result's window: near 0 where both
+// sample time at the same positions, near the two estimates in quadrature where their positions
+// differ. 0 where either has no levels.
+double timeErrorDifference(const RenderResult& fine, const RenderResult& result);
 
 }  // namespace clipblur
