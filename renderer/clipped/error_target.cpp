@@ -192,11 +192,9 @@ ReclipRender renderReclips(const RenderJob& job, double spacing, int frame, cons
 
 // How much two renders' re-clip errors differ: their RMS difference less, in quadrature, how much their
 // estimated time errors differ (timeErrorDifference). Where re-clips at half the spacing keep the
-// positions' times (table1_spin) the two time errors are nearly one and cancel in the difference; where
-// they re-lay them (propeller) they are nearly independent and the difference holds both. Taking both
-// estimates off in quadrature took the first case's re-clip change for time error (1.71 of the target),
-// and taking each estimate off per pixel over-refined the second (0.42): per pixel the estimate is
-// no better than its RMS.
+// positions' times the two time errors are nearly one and cancel in the difference; where they re-lay
+// them they are nearly independent and the difference holds both. The rules tried before this one are
+// in docs/performance.md ("The re-clip check past a stepped count").
 double reclipChange(const RenderResult& fine, const RenderResult& coarse) {
     const double d = rmsDifference(fine.image, coarse.image), t = timeErrorDifference(fine, coarse);
     return std::sqrt(std::max(0.0, d * d - t * t));
