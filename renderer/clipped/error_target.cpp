@@ -509,7 +509,7 @@ double timeErrorDifference(const RenderResult& fine, const RenderResult& result)
             const glm::vec4 d = result.level_differences[result.image.index(x, y)] - fine.level_differences[fine.image.index(x, y)];
             for (int c = 0; c < 3; ++c) sum += double(d[c]) * d[c];
         }
-    return std::sqrt(sum / (3.0 * static_cast<double>(w.area()))) / (std::pow(3.0, kTimeErrorOrder) - 1.0);
+    return std::sqrt(sum / (3.0 * static_cast<double>(w.area()))) / levelsPerError();
 }
 
 double spacingForTarget(double setting, double estimate, double target, double coarser_order) {

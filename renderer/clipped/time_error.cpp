@@ -17,7 +17,7 @@ double estimateTimeError(std::span<const LevelDifference> pixels) {
     double sum = 0.0;
     for (const LevelDifference& p : pixels)
         for (int c = 0; c < 3; ++c) sum += double(p[c]) * p[c];
-    return std::sqrt(sum / (3.0 * static_cast<double>(pixels.size()))) / (std::pow(3.0, kTimeErrorOrder) - 1.0);
+    return std::sqrt(sum / (3.0 * static_cast<double>(pixels.size()))) / levelsPerError();
 }
 
 }  // namespace clipblur

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct NestedRule {
 };
 
 constexpr double kTimeErrorOrder = 2.0;
+
+// Q_3h - Q_h per unit of the fine rule's error E(h): 3^p - 1.
+inline double levelsPerError() { return std::pow(3.0, kTimeErrorOrder) - 1.0; }
 
 // Per pixel Q_3h - Q_h in R, G, B and covered area. Floats: an estimate needs no more, and a film's
 // worth of them stays 16 bytes a pixel.
