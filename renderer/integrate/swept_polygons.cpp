@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
 #include "renderer/clipped/time_error.h"
 #include "renderer/geometry/chord_sweep.h"
+#include "renderer/thread_scratch.h"
 
 namespace clipblur {
 
@@ -102,6 +104,37 @@ void addSwept(TileSums& out, std::size_t i, double w, const SweptPolygon& p) {
     out.depth[i] += w * p.depth;
 }
 
+// One polygon's weight per cell of a box, summed over its positions, so that a cell takes one addSwept
+// (linear in the weight, as the level term is) instead of one per position: positions under a pixel
+// apart revisit cells (table1_spin at 1280x720: 1.8 visits a cell at 2 px, 3.2 at 1 px). A cell's sums
+// are the current polygon's where `mark` holds its stamp, so nothing is cleared between polygons.
+struct CellWeights {
+    std::vector<std::uint32_t> mark;
+    std::vector<double> weight, level;
+    std::vector<std::size_t> touched;  // in first-visit order
+    std::uint32_t stamp = 0;
+
+    void start(std::size_t cells) {
+        if (mark.size() < cells || stamp == UINT32_MAX) {
+            mark.assign(std::max(cells, mark.size()), 0);
+            weight.resize(mark.size());
+            level.resize(mark.size());
+            stamp = 0;
+        }
+        ++stamp;
+        touched.clear();
+    }
+    void add(std::size_t i, double w, double l) {
+        if (mark[i] != stamp) {
+            mark[i] = stamp;
+            weight[i] = level[i] = 0.0;
+            touched.push_back(i);
+        }
+        weight[i] += w;
+        level[i] += l;
+    }
+};
+
 // Exact sweep (chord_sweep.h): each polygon's chords integrated exactly; the nested rule's difference from
 // chords through its coarser knots, where the path does not translate (a translating one's is one exact
 // chord either way: 0).
@@ -145,15 +178,19 @@ void accumulateSwept(const SweepInterval& sweep, const PixelBounds& tile, std::s
     }
     // Only polygons swept over the interval's positions have coarser levels; a still one is the same at all.
     const NestedRule rule(out.track_error ? sweep.positions : 1);
+    CellWeights& cells = threadScratch<CellWeights>();
     for (const SweptPolygon& p : swept) {
         const bool levels = out.track_error && p.positions == sweep.positions && p.positions >= 3;
-        const glm::dvec4 value(p.colour, p.coverage ? 1.0 : 0.0);
+        cells.start(out.box.area());
         // Only cells of out.box are visited: the plan bounds every path inside sweep.box.
         forEachSweptCell(p.polygon, p.path, p.positions, out.box, [&](int x, int y, double w, int k) {
-            const std::size_t i = out.box.index(x, y);
-            addSwept(out, i, w, p);
-            if (levels) out.d3[i] += (w * rule.to3[static_cast<std::size_t>(k)]) * value;
+            cells.add(out.box.index(x, y), w, levels ? w * rule.to3[static_cast<std::size_t>(k)] : 0.0);
         });
+        const glm::dvec4 value(p.colour, p.coverage ? 1.0 : 0.0);
+        for (const std::size_t i : cells.touched) {
+            addSwept(out, i, cells.weight[i], p);
+            if (levels) out.d3[i] += cells.level[i] * value;
+        }
     }
 }
 
