@@ -105,8 +105,8 @@ void addSwept(TileSums& out, std::size_t i, double w, const SweptPolygon& p) {
 }
 
 // One polygon's weight per cell of a box, summed over its positions, so that a cell takes one addSwept
-// (linear in the weight, as the level term is) instead of one per position: positions under a pixel
-// apart revisit cells (table1_spin at 1280x720: 1.8 visits a cell at 2 px, 3.2 at 1 px). A cell's sums
+// (linear in the weight, as the level term is) instead of one per position: positions a few pixels
+// apart or closer revisit cells (table1_spin at 1280x720: 1.8 visits a cell at 2 px, 3.2 at 1 px). A cell's sums
 // are the current polygon's where `mark` holds its stamp, so nothing is cleared between polygons.
 struct CellWeights {
     std::vector<std::uint32_t> mark;
