@@ -130,6 +130,30 @@ void forEachChord(const SweepPath& path, int positions, SweepKnots knots, F&& ch
     if (pending.facing(part)) chord(part);
 }
 
+// Calls part(u0, u1) for consecutive spans of the chord's u in [0, 1] over which half the stretch change
+// times the half-size stays within chordShapeTolerance along both axes. The stretch is linear in u and
+// positive (SweepChord::facing), so a span's step follows from the stretch at its start: by ratio
+// 1 + 2 share where the share bounds it (divided by that where the stretch falls, so the span's smaller
+// end still allows it), at least 2 kChordShapeTolerance / (rate half), so there are never more spans than
+// uniform 1/128 px parts would be.
+template <class F>
+void forEachShapePart(const SweepChord& c, const glm::dvec2& half, F&& part) {
+    double u = 0.0;
+    while (u < 1.0) {
+        double step = 1.0 - u;
+        for (int axis = 0; axis < 2; ++axis) {
+            const double rate = c.stretch_to[axis] - c.stretch_from[axis];
+            if (rate == 0.0 || !(half[axis] > 0.0)) continue;
+            const double stretch = std::max(0.0, c.stretch_from[axis] + u * rate);
+            const double allowed = chordShapeTolerance(rate < 0.0 ? stretch / (1.0 + 2.0 * kChordShapeShare) : stretch, half[axis]);
+            step = std::min(step, 2.0 * allowed / (std::abs(rate) * half[axis]));
+        }
+        const double next = step >= 1.0 - u || u + step <= u ? 1.0 : u + step;
+        part(u, next);
+        u = next;
+    }
+}
+
 // A chord's weight per unit of its parameter u: (s1 - s0) (1 + tilt s), s = s0 + u (s1 - s0).
 ChordWeight chordWeight(const SweepChord& c, double tilt) {
     const double span = c.s1 - c.s0;
@@ -159,34 +183,37 @@ void forEachChordCell(const ConvexPolygon& q, const SweepPath& path, int positio
         });
         return;
     }
-    // The farthest a vertex is from the pivot along each axis.
-    const glm::dvec2 extent = glm::max(glm::abs(box.lo - path.pivot), glm::abs(box.hi - path.pivot));
+    // Parts translate the box centre, which moves linearly as every vertex does, and hold the shape about
+    // it, so a part errs by half its stretch change times the half-size, wherever the pivot is.
+    const glm::dvec2 centre = 0.5 * (box.lo + box.hi), half = 0.5 * (box.hi - box.lo);
     SmallPolygon moved;
     moved.n = q.n;
     forEachChord(path, positions, knots, [&](const SweepChord& c) {
-        // Half the stretch change over a part times the extent is how far a vertex is off at its ends.
-        const glm::dvec2 change = glm::abs(c.stretch_to - c.stretch_from) * extent;
-        const int parts = std::max(1, static_cast<int>(std::ceil(0.5 * std::max(change.x, change.y) / kChordShapeTolerance)));
-        const double span = (c.s1 - c.s0) / parts;
-        for (int k = 0; k < parts; ++k) {
-            const double u0 = double(k) / parts, u1 = double(k + 1) / parts, um = 0.5 * (u0 + u1);
-            const SweepChord part{c.s0 + k * span, c.s0 + (k + 1) * span, c.from + u0 * (c.to - c.from),
-                                  c.from + u1 * (c.to - c.from), {}, {}};
-            const glm::dvec2 stretch = c.stretch_from + um * (c.stretch_to - c.stretch_from);
-            const glm::dvec2 at = path.pivot + part.from;
-            for (int i = 0; i < q.n; ++i) moved.v[i] = at + stretch * (q.v[i] - path.pivot);
-            translatingCells(moved, part.to - part.from, chordWeight(part, path.tilt), add);
-        }
+        const auto centreAt = [&](double u) {
+            return path.pivot + c.from + u * (c.to - c.from) + (c.stretch_from + u * (c.stretch_to - c.stretch_from)) * (centre - path.pivot);
+        };
+        const double span = c.s1 - c.s0;
+        forEachShapePart(c, half, [&](double u0, double u1) {
+            const glm::dvec2 stretch = c.stretch_from + (0.5 * (u0 + u1)) * (c.stretch_to - c.stretch_from);
+            const glm::dvec2 from = centreAt(u0);
+            for (int i = 0; i < q.n; ++i) moved.v[i] = from + stretch * (q.v[i] - centre);
+            const SweepChord part{c.s0 + u0 * span, c.s0 + u1 * span, {}, {}, {}, {}};
+            translatingCells(moved, centreAt(u1) - from, chordWeight(part, path.tilt), add);
+        });
     });
 }
 
 RasterBounds chordBounds(const ConvexPolygon& q, const SweepPath& path, int positions) {
     const RasterBounds box = q.bounds();
     const bool rectangle = swept_detail::axisAlignedRectangle(q);
-    bool reshaped = false;  // a part of one shape can reach past the chord's ends (kChordShapeTolerance)
+    const glm::dvec2 half = 0.5 * (box.hi - box.lo);
+    double reach = 0.0;  // how far a part of one shape can reach past the chord's ends (chordShapeTolerance)
     RasterBounds out;
     forEachChord(path, positions, SweepKnots::All, [&](const SweepChord& c) {
-        reshaped = reshaped || (!rectangle && c.stretch_from != c.stretch_to);
+        if (!rectangle && c.stretch_from != c.stretch_to) {
+            for (int axis = 0; axis < 2; ++axis)
+                reach = std::max(reach, chordShapeTolerance(std::max(c.stretch_from[axis], c.stretch_to[axis]), half[axis]));
+        }
         for (const auto& [offset, stretch] : {std::pair{c.from, c.stretch_from}, std::pair{c.to, c.stretch_to}}) {
             const glm::dvec2 at = path.pivot + offset;
             const glm::dvec2 a = at + stretch * (box.lo - path.pivot), b = at + stretch * (box.hi - path.pivot);
@@ -194,7 +221,7 @@ RasterBounds chordBounds(const ConvexPolygon& q, const SweepPath& path, int posi
             out.hi = glm::max(out.hi, glm::max(a, b));
         }
     });
-    if (reshaped) out.pad(kChordShapeTolerance);
+    out.pad(reach);
     return out;
 }
 

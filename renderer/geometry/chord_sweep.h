@@ -25,13 +25,23 @@ enum class SweepKnots { All, Nested };
 void forEachChordCell(const ConvexPolygon& q, const SweepPath& path, int positions, CellSink add,
                       SweepKnots knots = SweepKnots::All);
 
-// A chord along which a polygon's shape changes (its stretch does) is cut into parts of constant shape,
-// each its middle's, so no vertex is off by more than this (px) for it; they err alike either way of the
-// middle, so coverage errs far less. Axis-aligned rectangles need no cut (translatingRectangleCells).
-inline constexpr double kChordShapeTolerance = 1.0 / 128.0;
+// A chord along which a polygon's shape changes (its stretch does) is cut into parts, each translating
+// its centre exactly and holding the shape about it at the part's middle, so no vertex is off by more
+// than chordShapeTolerance for it; they err alike either way of the middle, so coverage errs far less.
+// Axis-aligned rectangles need no cut (translatingRectangleCells).
+inline constexpr double kChordShapeTolerance = 1.0 / 128.0;  // px
+inline constexpr double kChordShapeShare = 1.0 / 128.0;      // of the half-size, for shapes past 2 px
+
+// The vertex error a part may have along an axis where the stretch is `stretch` and the polygon's
+// half-size `half`: kChordShapeTolerance, or that share of the stretched half-size where it is larger, so
+// a sliver a turning surface stretches hundreds of times is cut by ratio (parts growing geometrically),
+// not into one part per 1/128 px of growth.
+inline double chordShapeTolerance(double stretch, double half) {
+    return stretch * half * kChordShapeShare > kChordShapeTolerance ? stretch * half * kChordShapeShare : kChordShapeTolerance;
+}
 
 // Raster bounds of every chord's moved polygon at both its ends (a polygon whose vertices move linearly
-// stays within their hull), grown by kChordShapeTolerance where a polygon is cut into parts of one shape:
+// stays within their hull), grown by chordShapeTolerance where a polygon is cut into parts of one shape:
 // the pixels forEachChordCell can reach with every knot (SweepKnots::All).
 RasterBounds chordBounds(const ConvexPolygon& q, const SweepPath& path, int positions);
 
