@@ -211,9 +211,18 @@ void translatingRectangleCells(const MovingRectangle& r, ChordWeight w, CellSink
     axis(0, columns);
     axis(1, rows);
     std::array<double, 10> u{};
+    const int c0 = columns.empty() ? 0 : columns.front().c;
     for (const AxisOverlap& oy : rows) {
         if (oy.empty()) continue;
-        for (const AxisOverlap& ox : columns) {
+        // Only columns the x interval touches while the row is covered can overlap it in time: those
+        // between its ends' extremes over [oy.ua, oy.ub] (the ends move linearly), one more either side
+        // for rounding. A rectangle moving diagonally meets a band of cells, not its box's every cell.
+        const double x_lo = std::min(r.lo.x + oy.ua * r.dlo.x, r.lo.x + oy.ub * r.dlo.x);
+        const double x_hi = std::max(r.hi.x + oy.ua * r.dhi.x, r.hi.x + oy.ub * r.dhi.x);
+        const long first = std::max(0L, static_cast<long>(std::floor(x_lo)) - c0 - 1);
+        const long last = std::min(static_cast<long>(columns.size()), static_cast<long>(std::ceil(x_hi)) - c0 + 1);
+        for (long k = first; k < last; ++k) {
+            const AxisOverlap& ox = columns[static_cast<std::size_t>(k)];
             const double ua = std::max(ox.ua, oy.ua), ub = std::min(ox.ub, oy.ub);
             if (!(ub > ua)) continue;
             // Merge the two ascending breakpoint lists within (ua, ub).

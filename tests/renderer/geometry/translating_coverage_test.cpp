@@ -102,13 +102,15 @@ TEST(TranslatingCells, LinearWeightInTime) {
 // fragment stretching), it is the dense midpoint sum of its exact overlaps (20000 times: each pixel's value
 // is piecewise quadratic in u, so the sum errs by at most (slope jump) h^2 / 8 per kink, < 1e-8), and the
 // weights sum to the integral of its area, (a + u da)(b + u db) (w0 + w1 u), by Simpson's rule (a cubic).
+// Every fourth trial translates 12x as far (up to 36 px, mostly diagonally), where only a band of its
+// box's cells is met in time.
 TEST(TranslatingCells, MovingRectangle) {
     std::mt19937 rng(20261129);
     std::uniform_real_distribution<double> u(-3.0, 3.0);
     for (int trial = 0; trial < 100; ++trial) {
         const glm::dvec2 lo(10.0 + u(rng), 8.0 + u(rng));
         const glm::dvec2 hi = lo + glm::dvec2(0.2 + std::abs(u(rng)), 0.2 + std::abs(u(rng)));
-        const glm::dvec2 d(u(rng), u(rng));
+        const glm::dvec2 d = (trial % 4 == 2 ? 12.0 : 1.0) * glm::dvec2(u(rng), u(rng));
         const bool stretching = trial % 2 == 1;
         const glm::dvec2 dhi = stretching ? d + 0.15 * glm::dvec2(u(rng), u(rng)) : d;
         const ChordWeight weight{1.0, stretching ? 0.3 : 0.0};
