@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+
 #include "renderer/geometry/convex_polygon.h"
 #include "renderer/geometry/swept_footprint.h"
 #include "renderer/geometry/translating_coverage.h"
@@ -37,7 +39,7 @@ inline constexpr double kChordShapeShare = 1.0 / 128.0;      // of the half-size
 // a sliver a turning surface stretches hundreds of times is cut by ratio (parts growing geometrically),
 // not into one part per 1/128 px of growth.
 inline double chordShapeTolerance(double stretch, double half) {
-    return stretch * half * kChordShapeShare > kChordShapeTolerance ? stretch * half * kChordShapeShare : kChordShapeTolerance;
+    return std::max(kChordShapeTolerance, stretch * half * kChordShapeShare);
 }
 
 // Raster bounds of every chord's moved polygon at both its ends (a polygon whose vertices move linearly
