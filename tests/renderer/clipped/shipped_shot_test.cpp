@@ -225,7 +225,7 @@ TEST(ShippedShot, SpinningWheelBlursAsTheStochasticReferenceDoes) {
     EXPECT_GT(held_ratio, 350.0);
 }
 
-// render.error_target on the plain shot at 160x90 (sweep): the camera turns about 40 degrees, so auto
+// render.error_target on the plain shot at 160x90 (sweep): the wheels turn 32.6 degrees, so auto
 // makes 3 shutter segments, and from 34 px of spacing up every render does their floor of work (45
 // re-clips, 7e-4 from the reference). Targets of 1e-2 and 3e-3 were met at 0.07 and 0.24 of the target;
 // fewer segments (error_target.cpp, fewerSegments) must bring them within issue 20's 0.5 .. 1.5 of it,
