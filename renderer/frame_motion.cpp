@@ -106,34 +106,40 @@ std::vector<std::uint32_t> FrameMotion::groups(const MotionWindow& window) const
     return motionGroups(scene_, window.t0, window.t1);
 }
 
-double FrameMotion::largestTurn() const {
-    // Slerp and the camera's SO(3) interpolation turn at a constant rate within a key interval, and keys
-    // turn by less than pi each; 256 samples resolve any shutter with fewer than 128 keys inside it.
+namespace {
+
+// The angle an orientation turns through over [t0, t1], summed over chords. Slerp and the camera's SO(3)
+// interpolation turn at a constant rate within a key interval, and keys turn by less than pi each; 256
+// samples resolve any window with fewer than 128 keys inside it.
+template <class Orientation>
+double turnOf(Orientation orientation, double t0, double t1) {
     constexpr int kSamples = 256;
-    const double t0 = shutter_.t0, t1 = shutter_.t1;
-    const auto turn = [&](auto orientation) {
-        double total = 0.0;
-        glm::dquat previous = orientation(t0);
-        for (int i = 1; i <= kSamples; ++i) {
-            const glm::dquat q = orientation(t0 + (t1 - t0) * i / kSamples);
-            total += angleBetween(previous, q);
-            previous = q;
-        }
-        return total;
-    };
-    const auto camera_orientation = [&](double t) { return glm::quat_cast(camera(t).basis()); };
-    double largest = camera_.exact() ? exactCameraTurn(*camera_.exact(), t0, t1)
-                                     : turn(camera_orientation);
-    for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
-        const Object& object = scene_.objects[o];
-        if (object.motion && !object.motion->skinned()) {
-            largest = std::max(largest, turn([&](double t) { return orientationOf(worldMatrix(object, t)); }));
-            continue;
-        }
-        if (object.transform.size() < 2) continue;
-        largest = std::max(largest, turn([&](double t) { return transform(o, t).rotate; }));
+    double total = 0.0;
+    glm::dquat previous = orientation(t0);
+    for (int i = 1; i <= kSamples; ++i) {
+        const glm::dquat q = orientation(t0 + (t1 - t0) * i / kSamples);
+        total += angleBetween(previous, q);
+        previous = q;
     }
-    return largest;
+    return total;
+}
+
+}  // namespace
+
+double FrameMotion::objectTurn(std::size_t o, double t0, double t1) const {
+    const Object& object = scene_.objects[o];
+    if (object.motion && !object.motion->skinned())
+        return turnOf([&](double t) { return orientationOf(worldMatrix(object, t)); }, t0, t1);
+    if (object.transform.size() < 2) return 0.0;
+    return turnOf([&](double t) { return transform(o, t).rotate; }, t0, t1);
+}
+
+FrameMotion::Turns FrameMotion::turns(double t0, double t1) const {
+    Turns turns;
+    turns.camera = camera_.exact() ? exactCameraTurn(*camera_.exact(), t0, t1)
+                                   : turnOf([&](double t) { return glm::quat_cast(camera(t).basis()); }, t0, t1);
+    for (std::size_t o = 0; o < scene_.objects.size(); ++o) turns.objects = std::max(turns.objects, objectTurn(o, t0, t1));
+    return turns;
 }
 
 }  // namespace clipblur

@@ -49,9 +49,16 @@ public:
 
     // Objects grouped by how they move over the window (motionGroups): per object its group's first object.
     std::vector<std::uint32_t> groups(const MotionWindow& window) const;
-    // Largest rotation (radians) the camera or any object turns through during the shutter, summed along
-    // the motion.
-    double largestTurn() const;
+    // The rotation (radians) the camera turns through over [t0, t1], and the largest any object turns
+    // through (objectTurn), each summed along the motion.
+    struct Turns {
+        double camera = 0.0;
+        double objects = 0.0;
+    };
+    Turns turns(double t0, double t1) const;
+    // The rotation (radians) object o turns through over [t0, t1]: its exact motion's, else its transform
+    // keys' (0 with fewer than two).
+    double objectTurn(std::size_t o, double t0, double t1) const;
 
 private:
     MotionWindow windowOf(double a, double b, const MotionWindow* outer) const;

@@ -488,7 +488,7 @@ std::vector<ShutterSegment> shutterSegmentsOf(const ClippedContext& ctx, Clipped
                 if (!band) band = guardBandPixels(ctx.frame.motion, ctx.frame.projection, ctx.frame.motion.window(s.begin, s.end), cap);
                 return *band;
             };
-            s.deep = hiddenTiles(ctx.frame, s, reach, probe);
+            s.deep = hiddenTiles(ctx.frame, s, reach, probe).unite(turningObjectTiles(ctx.frame, s, reach));
         }
     }
     stats.segments = static_cast<long long>(segments.size());

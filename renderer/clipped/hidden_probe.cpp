@@ -1,10 +1,14 @@
 #include "renderer/clipped/hidden_probe.h"
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <vector>
 
+#include "renderer/geometry/raster_bounds.h"
 #include "renderer/parallel_time.h"
 #include "renderer/propagation/surface_path.h"
+#include "scene/camera.h"
 
 namespace clipblur {
 
@@ -80,6 +84,37 @@ TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, cons
     const int r = reach() + kProbeStride;
     for (const glm::ivec2& p : hidden)
         where.addOverlapping(frame.grid, PixelBounds::corners(p.x - r, p.y - r, p.x + r + 1, p.y + r + 1));
+    return where;
+}
+
+TileSet turningObjectTiles(const FrameSetup& frame, const ShutterSegment& segment, const std::function<int()>& reach) {
+    constexpr int kTimes = 9;
+    const Scene& scene = frame.scene();
+    const FrameMotion& motion = frame.motion;
+    const double limit = kAutoSegmentTurnDegrees * std::numbers::pi / 180.0;
+    TileSet where = TileSet::none();
+    std::vector<glm::dvec3> world;
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        if (!(motion.objectTurn(o, segment.begin, segment.end) > limit)) continue;
+        RasterBounds box;
+        for (int k = 0; k < kTimes; ++k) {
+            const double t = segment.begin + (segment.end - segment.begin) * k / (kTimes - 1);
+            const CameraFrame camera = motion.camera(t);
+            motion.vertices(o, t, world);
+            for (const glm::dvec3& v : world) {
+                const ImagePoint ip = projectToImagePlane(camera, v);
+                if (!(ip.depth > kDefaultNearDepth)) return TileSet();
+                box.expand(frame.projection.toRaster(ip.p));
+            }
+        }
+        if (box.empty()) continue;
+        const int band = reach();
+        // Clamped to the film grown by the band, so a box far beyond it is never cast to int.
+        const glm::dvec2 lo = glm::max(box.lo - double(band), glm::dvec2(-band - 1.0));
+        const glm::dvec2 hi = glm::min(box.hi + double(band), glm::dvec2(scene.film.width + band + 1.0, scene.film.height + band + 1.0));
+        if (!(lo.x < hi.x && lo.y < hi.y)) continue;
+        where.addOverlapping(frame.grid, PixelBounds::corners(int(std::floor(lo.x)), int(std::floor(lo.y)), int(std::ceil(hi.x)), int(std::ceil(hi.y))));
+    }
     return where;
 }
 

@@ -47,4 +47,11 @@ bool visibilityCanChange(const MotionWindow& window);
 TileSet hiddenTiles(const FrameSetup& frame, const ShutterSegment& segment, const std::function<int()>& reach,
                     HiddenProbe& total);
 
+// The film tiles over which an object turning more than kAutoSegmentTurnDegrees during the segment
+// passes (its vertices' raster box at 9 times, grown by reach() pixels, the segment's guard band): what
+// its turn uncovers there, a sliver between a spinning tyre's facets or the wall behind a propeller,
+// was behind it, so keeping every layer there draws it whatever the probe's cells meet. Every tile
+// where such an object reaches the camera plane. Empty when no object turns that far.
+TileSet turningObjectTiles(const FrameSetup& frame, const ShutterSegment& segment, const std::function<int()>& reach);
+
 }  // namespace clipblur

@@ -7,10 +7,19 @@
 
 namespace clipblur {
 
+namespace {
+
+// How many parts of `per_part` degrees `radians` needs (1e-9: a turn of exactly n parts is n).
+int partsOf(double radians, double per_part) {
+    return static_cast<int>(std::ceil(radians * 180.0 / std::numbers::pi / per_part - 1e-9));
+}
+
+}  // namespace
+
 int shutterSegments(const FrameMotion& motion, int requested, int max_segments) {
     if (requested > 0) return std::min(requested, max_segments);
-    const double degrees = motion.largestTurn() * 180.0 / std::numbers::pi;
-    const int n = static_cast<int>(std::ceil(degrees / kAutoSegmentTurnDegrees - 1e-9));
+    const FrameMotion::Turns turns = motion.turns(motion.t0(), motion.t1());
+    const int n = std::max(partsOf(turns.camera, kAutoSegmentTurnDegrees), partsOf(turns.objects, kAutoSegmentObjectTurnDegrees));
     return std::clamp(n, 1, max_segments);
 }
 

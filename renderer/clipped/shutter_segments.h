@@ -12,9 +12,16 @@ namespace clipblur {
 // seen in between (the side of the world a camera turning 90 degrees sweeps past) is missing from both.
 // Splitting the shutter into segments, each with its own fragment sets at its ends, bounds how far
 // anything turns between two sets; what is still hidden at both ends of a segment (the wall behind a
-// propeller whose blades return to the same places) is kept in its sets' deep tiles (ShutterSegment). `requested` > 0 is used as given; 0 (auto) gives one segment per kAutoSegmentTurnDegrees of the largest
-// turn, at most max_segments; a shutter with no rotation is one segment, the paper's method.
+// propeller whose blades return to the same places) is kept in its sets' deep tiles (ShutterSegment).
+// `requested` > 0 is used as given; 0 (auto) gives one segment per kAutoSegmentTurnDegrees of the
+// camera's turn or per kAutoSegmentObjectTurnDegrees of the largest object turn, whichever is more, at
+// most max_segments; a shutter with no rotation is one segment, the paper's method.
+// The two differ because what a camera turns to see can lie outside both end frames, where no set
+// holds it, while what an object's turn uncovers lies where the object passes: a segment in which an
+// object turns more than kAutoSegmentTurnDegrees keeps every layer over its swept footprint
+// (turningObjectTiles), which no end sets, however close, guarantee.
 inline constexpr double kAutoSegmentTurnDegrees = 15.0;
+inline constexpr double kAutoSegmentObjectTurnDegrees = 60.0;
 int shutterSegments(const FrameMotion& motion, int requested, int max_segments);
 
 // One shutter segment and its share of the shutter.

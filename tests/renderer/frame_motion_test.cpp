@@ -63,7 +63,8 @@ TEST(FrameMotion, TurningCameraKeepsItsEyeStill) {
     EXPECT_FALSE(turning.shutter().camera_still);
     EXPECT_TRUE(turning.shutter().eye_still);
     EXPECT_FALSE(turning.shutter().stillInImage(0));
-    EXPECT_GT(turning.largestTurn(), 0.0);
+    EXPECT_GT(turning.turns(0.0, 1.0).camera, 0.0);
+    EXPECT_EQ(turning.turns(0.0, 1.0).objects, 0.0);
     scene.camera.keys.back().position = glm::dvec3(0.0, 0.0, 0.1);
     EXPECT_FALSE(FrameMotion(scene, 0.0, 1.0).shutter().eye_still);
     EXPECT_TRUE(FrameMotion(scene, 1.0, 2.0).shutter().camera_still);  // held after its last key

@@ -595,11 +595,11 @@ TEST(GltfLoader, BoomCameraRatesStillnessAndTurn) {
     EXPECT_FALSE(whole.shutter().camera_still);
     EXPECT_FALSE(whole.shutter().eye_still);
     // A turn about a fixed axis: the chords add up to the angle. 1e-12: acos near its ends.
-    EXPECT_NEAR(whole.largestTurn(), angle, 1e-12);
-    EXPECT_NEAR(FrameMotion(scene, 6, 18).largestTurn(), angle / 2, 1e-12);
+    EXPECT_NEAR(whole.turns(0, 24).camera, angle, 1e-12);
+    EXPECT_NEAR(FrameMotion(scene, 6, 18).turns(6, 18).camera, angle / 2, 1e-12);
     const FrameMotion after(scene, 30, 40);
     EXPECT_TRUE(after.shutter().camera_still);
-    EXPECT_EQ(after.largestTurn(), 0.0);
+    EXPECT_EQ(after.turns(30, 40).camera, 0.0);
 }
 
 TEST(GltfLoader, CameraAtTheBoomPivotKeepsItsEyeStill) {

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -295,6 +296,46 @@ TEST(HiddenProbe, SameDeepTilesForOneAndTwoThreads) {
     EXPECT_EQ(one.hidden_probe_hits, two.hidden_probe_hits);
     for (std::size_t c = 0; c < results[0].image.channels.size(); ++c)
         EXPECT_EQ(results[0].image.channels[c].values, results[1].image.channels[c].values) << c;
+}
+
+// A 16 px square centred on the optical axis (raster [24, 40)^2 of a 64 px film, 8 px tiles) turning
+// about the view direction: over 90 degrees its corners sweep the disc of radius 8 sqrt(2) = 11.3 px
+// about (32, 32), reached on the axes at 45 degrees (a sampled time, 4 of 8), so its box is
+// [20.7, 43.3]^2: tile columns and rows 2 to 5, and with a reach of 5 px [15.7, 48.3]^2, 1 to 6. Turned
+// 10 degrees (under 15) it marks nothing; crossing the camera plane, every tile.
+TEST(HiddenProbe, TurningObjectTilesAreItsSweptFootprint) {
+    RenderJob job = test::squareFilmJob(64);
+    Object quad = rasterQuad(24.0, 24.0, 40.0, 40.0, 10.0, 64);
+    const auto turned = [&](double degrees) -> const Scene& {  // the frame keeps a reference to it
+        const glm::dquat q = glm::angleAxis(glm::radians(degrees), glm::dvec3(0, 0, 1));
+        quad.transform = {TransformKey{0.0, glm::dvec3(0.0), glm::dquat(1, 0, 0, 0), glm::dvec3(1.0)},
+                          TransformKey{1.0, glm::dvec3(0.0), q, glm::dvec3(1.0)}};
+        job.scene.objects = {quad};
+        return job.scene;
+    };
+    const auto expectSquare = [](const TileSet& where, const TileGrid& grid, int first, int last) {
+        for (int i = 0; i < grid.count(); ++i) {
+            const int tx = i % grid.columns(), ty = i / grid.columns();
+            EXPECT_EQ(where.contains(i), tx >= first && tx <= last && ty >= first && ty <= last) << tx << "," << ty;
+        }
+    };
+    {
+        const test::TestFrame frame(turned(90.0), 0.0, 1.0, 8);
+        ASSERT_EQ(frame.setup().grid.columns(), 8);
+        expectSquare(turningObjectTiles(frame.setup(), segment(0.0, 1.0), within(0)), frame.setup().grid, 2, 5);
+        expectSquare(turningObjectTiles(frame.setup(), segment(0.0, 1.0), within(5)), frame.setup().grid, 1, 6);
+    }
+    {
+        const test::TestFrame frame(turned(10.0), 0.0, 1.0, 8);
+        int asked = 0;  // the band scans the scene: not measured where nothing turns far
+        EXPECT_TRUE(turningObjectTiles(frame.setup(), segment(0.0, 1.0), [&] { return ++asked; }).empty());
+        EXPECT_EQ(asked, 0);
+    }
+    {
+        quad.mesh.positions[0].z = -1.0;  // behind the eye
+        const test::TestFrame frame(turned(90.0), 0.0, 1.0, 8);
+        EXPECT_TRUE(turningObjectTiles(frame.setup(), segment(0.0, 1.0), within(0)).every());
+    }
 }
 
 }  // namespace clipblur
