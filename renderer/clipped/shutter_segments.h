@@ -30,8 +30,9 @@ struct ShutterSegment {
     double weight = 1.0;  // its share of the shutter: 1 / count for equal segments
     // The shutter curve's (unnormalised) weight at begin and end, linear between: equal for a box.
     double curve_begin = 1.0, curve_end = 1.0;
-    // Film tiles near surfaces hidden at both its ends but seen in between (hiddenTiles): there its
-    // fragment sets keep every layer, and the re-clips find what shows.
+    // Film tiles near surfaces hidden at both its ends but seen in between (hiddenTiles) and over
+    // objects turning far within it (turningObjectTiles): there its fragment sets keep every layer, and
+    // the re-clips find what shows.
     TileSet deep = TileSet::none();
 };
 
