@@ -26,7 +26,6 @@
 #include "io/progress_timing.h"
 #include "io/shard.h"
 #include "io/stats_writer.h"
-#include "renderer/image_module.h"
 #include "renderer/render.h"
 #include "renderer/worker_threads.h"
 #include "scene/error.h"
@@ -290,10 +289,6 @@ Action addRenderCommand(CLI::App& app) {
         checkFrameFiles(frames, read);
         std::optional<tbb::global_control> limit;
         if (opts->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, opts->threads);
-        // Images are written by the image module (OpenImageIO): it loads while the frames render, once
-        // TBB's libraries and threads are up.
-        startWorkerThreads();
-        const ImageModulePreload preload;
         const int threads =
             static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
         const ProgressStyle style = parseProgress(opts->progress);

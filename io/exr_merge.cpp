@@ -6,7 +6,7 @@
 
 #include "io/atomic_file.h"
 #include "io/shard.h"
-#include "renderer/image_module.h"
+#include "io/image_files.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -19,7 +19,7 @@ static FrameExpectation resolveExpectation(const std::string& framePath, int cou
     if (!needSize && !expected.config_hash.empty() && !expected.channels.empty()) return expected;
     for (int i = 0; i < count; ++i) {
         ImageFile file;
-        if (!imageModule().read(shardPath(framePath, {i, count}), ImageRead::Header, file).empty()) continue;
+        if (!readImageFile(shardPath(framePath, {i, count}), ImageRead::Header, file).empty()) continue;
         if (needSize) {
             expected.width = file.full_width;
             expected.height = file.full_height;
@@ -64,7 +64,7 @@ bool frameIsMerged(const std::string& framePath, const FrameExpectation& expecte
     want.height = expected.height;
     if (want.width <= 0 || want.height <= 0) {
         ImageFile file;
-        if (!imageModule().read(framePath, ImageRead::Header, file).empty()) return false;
+        if (!readImageFile(framePath, ImageRead::Header, file).empty()) return false;
         want.width = file.full_width;
         want.height = file.full_height;
     }
@@ -94,7 +94,7 @@ void mergeShards(const std::string& framePath, int count, const FrameExpectation
     for (int i = 0; i < count; ++i) {
         const std::string path = shardPath(framePath, {i, count});
         ImageFile shard;
-        if (const std::string why = imageModule().read(path, ImageRead::HeaderAndPixels, shard); !why.empty())
+        if (const std::string why = readImageFile(path, ImageRead::HeaderAndPixels, shard); !why.empty())
             throw Error(ExitCode::Output, "cannot read shard " + path + ": " + why);
         if (i == 0) {
             frame = shard;
@@ -114,7 +114,7 @@ void mergeShards(const std::string& framePath, int count, const FrameExpectation
     }
 
     writeAtomically(framePath, [&](const fs::path& temporary) {
-        if (const std::string why = imageModule().write(temporary.string(), frame); !why.empty())
+        if (const std::string why = writeImageFile(temporary.string(), frame); !why.empty())
             throw Error(ExitCode::Output, "cannot write " + framePath + ": " + why);
     });
 }

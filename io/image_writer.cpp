@@ -6,7 +6,7 @@
 
 #include "clipblur/version.h"
 #include "io/shard.h"
-#include "renderer/image_module.h"
+#include "io/image_files.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -24,7 +24,7 @@ void checkImage(const Image& image) {
 }
 
 void writeWith(const std::filesystem::path& file, const ImageFile& image) {
-    const std::string why = imageModule().write(file.string(), image);
+    const std::string why = writeImageFile(file.string(), image);
     if (!why.empty()) throw Error(ExitCode::Output, why);
 }
 
@@ -46,10 +46,10 @@ void addString(ImageFile& file, std::string_view name, const std::string& value)
     file.set(ImageAttribute::string(std::string(name), value));
 }
 
-// Standard OpenEXR attributes of a rendered frame (written through OpenImageIO's names).
+// Standard OpenEXR attributes of a rendered frame, by their OpenEXR names.
 void addFrameHeader(ImageFile& file, const FrameHeader& h) {
     file.set(ImageAttribute::integers("framesPerSecond", kTypeRational, {h.fps_numerator, h.fps_denominator}));
-    addFloat(file, "ExposureTime", h.exposure_seconds);
+    addFloat(file, "expTime", h.exposure_seconds);
     const auto matrix = [](const auto& m) { return std::vector<float>(m.begin(), m.end()); };
     file.set(ImageAttribute::floats("worldToCamera", kTypeMatrix44, matrix(h.world_to_camera)));
     file.set(ImageAttribute::floats("worldToNDC", kTypeMatrix44, matrix(h.world_to_ndc)));
@@ -160,7 +160,7 @@ void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, 
         file.window = PixelBounds::sized(0, 0, image.width, image.height);
         file.channels = {"R", "G", "B"};
         file.types.assign(3, PixelType::UInt8);
-        // 8-bit codes as float k / 255, which the module converts back to k exactly.
+        // 8-bit codes as float k / 255, which writePngFile rounds back to k exactly.
         std::vector<float>& pixels = file.pixels;
         pixels.assign(static_cast<std::size_t>(image.width) * image.height * 3, 0.0f);
         for (int y = 0; y < image.window.height(); ++y) {
@@ -177,7 +177,6 @@ void writePngPreview(AtomicFileGroup& group, const std::filesystem::path& path, 
                         encodeSrgb8(static_cast<float>(rgb[c]->values[src] + uncovered * background[c])) / 255.0f;
             }
         }
-        addString(file, "oiio:ColorSpace", "sRGB");
         writeWith(temporary, file);
     });
 }

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "renderer/image_module.h"
+#include "io/image_files.h"
 
 #include "scene/error.h"
 
@@ -12,7 +12,7 @@ namespace clipblur {
 
 ReferenceImage readReference(const std::string& path, int width, int height) {
     ImageFile file;
-    const std::string why = imageModule().read(path, ImageRead::HeaderAndPixels, file);
+    const std::string why = readImageFile(path, ImageRead::HeaderAndPixels, file);
     if (file.format.empty()) throw Error(ExitCode::Config, "cannot read reference image " + path + ": " + why);
     if (file.full_width != width || file.full_height != height)
         throw Error(ExitCode::Config, "reference image " + path + " is " + std::to_string(file.full_width) + "x" +

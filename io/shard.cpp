@@ -6,7 +6,7 @@
 #include <limits>
 #include <memory>
 
-#include "renderer/image_module.h"
+#include "io/image_files.h"
 #include "scene/error.h"
 
 namespace clipblur {
@@ -89,7 +89,7 @@ ImageCheck checkImage(const fs::path& path, const ImageExpectation& expected) {
     if (!fs::is_regular_file(path, ec)) return fail("missing");
     ImageFile file;
     // One read: a file cut short keeps an intact header, so its pixel error is reported after the header checks.
-    const std::string why = imageModule().read(path.string(), ImageRead::HeaderAndPixels, file);
+    const std::string why = readImageFile(path.string(), ImageRead::HeaderAndPixels, file);
     if (file.format.empty()) return fail("unreadable: " + why);
     if (file.format != "openexr") return fail("not an OpenEXR file");
     if (file.full_x != 0 || file.full_y != 0 || file.full_width != expected.width ||

@@ -3,8 +3,6 @@
 #include <dlfcn.h>
 
 #include <filesystem>
-#include <future>
-#include <mutex>
 #include <system_error>
 
 #include "scene/error.h"
@@ -35,31 +33,12 @@ Loaded load() {
     return {entry(), {}};
 }
 
-struct Loader {
-    std::once_flag started;
-    std::shared_future<Loaded> result;
-
-    const std::shared_future<Loaded>& start() {
-        std::call_once(started, [this] { result = std::async(std::launch::async, load).share(); });
-        return result;
-    }
-};
-
-Loader& loader() {
-    static Loader instance;
-    return instance;
-}
-
 }  // namespace
 
 const ImageModule& imageModule() {
-    const Loaded& loaded = loader().start().get();
+    static const Loaded loaded = load();  // once, thread-safe
     if (!loaded.module) throw Error(ExitCode::Output, loaded.error);
     return *loaded.module;
 }
-
-ImageModulePreload::ImageModulePreload() { loader().start(); }
-
-ImageModulePreload::~ImageModulePreload() { loader().start().wait(); }
 
 }  // namespace clipblur

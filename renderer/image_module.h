@@ -9,9 +9,10 @@ namespace clipblur {
 class ImageTextures;
 
 // What libclipblur_oiio.so, the one place OpenImageIO is linked, provides. Debian's OpenImageIO pulls in
-// some 250 shared libraries (FFmpeg, OpenCV, GDAL, ...) whose loading and relocation cost 0.4 s before
-// main(); so the executable does not link it, and only a process that reads or writes an image loads
-// the module, on first use. Built by the same compiler from the same headers as the executable.
+// some 250 shared libraries (FFmpeg, OpenCV, GDAL, ...) whose loading and relocation cost 0.15-0.4 s
+// (and, on a thread beside a render, took a sixth of its CPU); so the executable does not link it, and
+// only a process that uses textures or an image format other than OpenEXR and PNG (io/image_files.h)
+// loads the module, on first use. Built by the same compiler from the same headers as the executable.
 struct ImageModule {
     // Reads `file`'s first subimage into `out`; empty on success, else why not. When the header reads
     // but the pixels do not (a truncated file), `out` holds the header (its `format` is set).
@@ -25,17 +26,5 @@ struct ImageModule {
 // Loads the module once (thread-safe): from beside the executable, else from where the build put it.
 // Throws Error(ExitCode::Output) naming the file and the loader's reason when it cannot be loaded.
 const ImageModule& imageModule();
-
-// Starts loading the module on a background thread, for a command that will write images: its load
-// then overlaps the scene's loading and rendering. imageModule() waits for it, and so does the
-// destructor: a command that stops early (an interrupt, an error) must not exit while the loader is
-// inside dlopen, where the exit races the libraries' static constructors (LeakSanitizer saw it as leaks).
-class ImageModulePreload {
-public:
-    ImageModulePreload();
-    ~ImageModulePreload();
-    ImageModulePreload(const ImageModulePreload&) = delete;
-    ImageModulePreload& operator=(const ImageModulePreload&) = delete;
-};
 
 }  // namespace clipblur

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev
-  libopenimageio-dev openimageio-tools openexr
+  libopenimageio-dev openimageio-tools openexr libopenexr-dev libpng-dev
   libglm-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox

@@ -109,16 +109,22 @@ TEST(ImageModule, MissingAndBrokenFilesGiveTheReason) {
     EXPECT_FALSE(std::filesystem::exists(dir / "short.exr"));
 }
 
-// The executable does not link OpenImageIO: commands that touch no image never load its dependencies.
-TEST(ImageModule, VersionAndValidateLoadNoImageLibrary) {
+// The executable does not link OpenImageIO: commands that need neither a texture nor an image format
+// other than OpenEXR and PNG never load its dependencies, a render of the default job included.
+TEST(ImageModule, VersionValidateAndRenderLoadNoImageLibrary) {
     const std::string binary = CLIPBLUR_BINARY;
     const std::string job = std::string(CLIPBLUR_SOURCE_DIR) + "/configs/default.yaml";
-    for (const std::string& command : {binary + " --version", binary + " validate " + job}) {
+    const auto out = testing::freshTempDir("clipblur_image_module_render") / "tiny.exr";
+    const std::string render = binary + " render " + job + " --set film.width=16 --set film.height=9 --progress none --out " +
+                               out.string();
+    for (const std::string& command : {binary + " --version", binary + " validate " + job, render}) {
         const std::string loaded = testing::captureShell("LD_DEBUG=libs " + command + " 2>&1 >/dev/null");
         EXPECT_NE(loaded.find("libembree3"), std::string::npos) << "LD_DEBUG output not seen for " << command;
         EXPECT_EQ(loaded.find("libOpenImageIO"), std::string::npos) << command;
         EXPECT_EQ(loaded.find("libclipblur_oiio"), std::string::npos) << command;
     }
+    EXPECT_TRUE(std::filesystem::exists(out));
+    EXPECT_TRUE(std::filesystem::exists(out.parent_path() / "tiny.png"));
 }
 
 }  // namespace
