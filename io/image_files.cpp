@@ -30,14 +30,14 @@ bool startsAsExr(const std::string& file) {
 
 std::string readImageFile(const std::string& file, ImageRead what, ImageFile& out) {
     if (extensionOf(file) == ".exr" || startsAsExr(file)) return readExrFile(file, what, out);
-    return readImageFile(file, what, out);
+    return imageModule().read(file, what, out);
 }
 
 std::string writeImageFile(const std::string& file, const ImageFile& image) {
     const std::string ext = extensionOf(file);
     if (ext == ".exr") return writeExrFile(file, image);
     if (ext == ".png") return writePngFile(file, image);
-    return writeImageFile(file, image);
+    return imageModule().write(file, image);
 }
 
 }  // namespace clipblur

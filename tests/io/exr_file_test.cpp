@@ -1,3 +1,4 @@
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -193,6 +194,33 @@ TEST(ImageFiles, OpenExrFilesAreKnownByExtensionOrMagicNumber) {
     ASSERT_EQ(readImageFile(unnamed, ImageRead::HeaderAndPixels, b), "");
     EXPECT_EQ(a.pixels, b.pixels);
     EXPECT_EQ(a.channels, b.channels);
+}
+
+// Every other format goes through the image module, and a PNG written by libpng reads back through it:
+// the paths a `--reference photo.png` or an `--out frame.tif` take.
+TEST(ImageFiles, OtherFormatsGoThroughTheImageModule) {
+    const auto dir = testing::freshTempDir("clipblur_image_files_other");
+    ImageFile f;
+    f.full_width = 3;
+    f.full_height = 2;
+    f.window = PixelBounds::sized(0, 0, 3, 2);
+    f.channels = {"R", "G", "B"};
+    f.types.assign(3, PixelType::Float);
+    for (int i = 0; i < 18; ++i) f.pixels.push_back(0.25f * static_cast<float>(i) - 1.0f);
+    const std::string tif = (dir / "frame.tif").string();
+    ASSERT_EQ(writeImageFile(tif, f), "");
+    ImageFile back;
+    ASSERT_EQ(readImageFile(tif, ImageRead::HeaderAndPixels, back), "");
+    EXPECT_EQ(back.pixels, f.pixels);
+    ImageFile codes = f;
+    codes.types.assign(3, PixelType::UInt8);
+    for (std::size_t i = 0; i < codes.pixels.size(); ++i) codes.pixels[i] = static_cast<float>(i * 13) / 255.0f;
+    const std::string png = (dir / "preview.png").string();
+    ASSERT_EQ(writeImageFile(png, codes), "");
+    ASSERT_EQ(readImageFile(png, ImageRead::HeaderAndPixels, back), "");
+    ASSERT_EQ(back.pixels.size(), codes.pixels.size());
+    for (std::size_t i = 0; i < codes.pixels.size(); ++i) EXPECT_EQ(std::lround(back.pixels[i] * 255.0f), static_cast<long>(i * 13)) << i;
+    EXPECT_NE(readImageFile((dir / "missing.png").string(), ImageRead::Header, back), "");
 }
 
 }  // namespace
