@@ -4,6 +4,7 @@
 #include <array>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <set>
 #include <string_view>
 
@@ -20,6 +21,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfRationalAttribute.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfStringVectorAttribute.h>
 #include <OpenEXR/ImfThreading.h>
@@ -284,10 +286,19 @@ std::string writeExrFile(const std::string& file, const ImageFile& image) {
                                      Imf::Channel(image.types[c] == PixelType::Float ? Imf::FLOAT : Imf::HALF));
         for (const ImageAttribute& a : image.attributes)
             if (const std::string why = addAttribute(header, a); !why.empty()) return why;
-        Imf::OutputFile out(file.c_str(), header, Imf::globalThreadCount());
-        std::vector<half> halves;
-        out.setFrameBuffer(writeBuffer(data, image, halves));
-        out.writePixels(image.window.height());
+        // OpenEXR writes the line-offset table when the file is destroyed and swallows errors there, so
+        // the stream is ours: a full disk shows in its state after the close.
+        std::ofstream os(file, std::ios::binary | std::ios::trunc);
+        if (!os) return "cannot write " + file + ": cannot open it";
+        {
+            Imf::StdOFStream stream(os, file.c_str());
+            Imf::OutputFile out(stream, header, Imf::globalThreadCount());
+            std::vector<half> halves;
+            out.setFrameBuffer(writeBuffer(data, image, halves));
+            out.writePixels(image.window.height());
+        }
+        os.close();
+        if (os.fail()) return "cannot write " + file + ": the file did not close cleanly (disk full?)";
     } catch (const std::exception& e) {
         return "cannot write " + file + ": " + e.what();
     }
