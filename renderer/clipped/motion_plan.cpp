@@ -189,20 +189,17 @@ TileBins::TileBins(const TileGrid& grid, const std::array<std::vector<FragmentMo
     for (const auto& m : motion)
         if (m.size() >= std::size_t{1} << 31) throw Error(ExitCode::Render, "a fragment set of 2^31 triangles or more");
     const double size = grid.tileSize();
-    // Calls f(tile, ref) for every tile each fragment's swept box overlaps, in ref order; every tile for a
-    // fragment reaching the camera plane.
+    // Calls f(tile, ref) for every tile each fragment's swept box overlaps, in ref order (a fragment
+    // reaching the camera plane may have the whole plane as its box: every tile).
     const auto forEachBin = [&](auto&& f) {
         for (std::uint8_t layer = 0; layer < 2; ++layer) {
             const auto& m = motion[layer];
             for (std::uint32_t i = 0; i < m.size(); ++i) {
                 const RasterBounds& box = m[i].swept;
-                int c0 = 0, c1 = grid.columns() - 1, r0 = 0, r1 = grid.rows() - 1;
-                if (!m[i].crosses_near) {
-                    c0 = static_cast<int>(std::clamp(std::floor(box.lo.x / size), 0.0, double(grid.columns())));
-                    c1 = static_cast<int>(std::clamp(std::floor(box.hi.x / size), -1.0, double(grid.columns() - 1)));
-                    r0 = static_cast<int>(std::clamp(std::floor(box.lo.y / size), 0.0, double(grid.rows())));
-                    r1 = static_cast<int>(std::clamp(std::floor(box.hi.y / size), -1.0, double(grid.rows() - 1)));
-                }
+                const int c0 = static_cast<int>(std::clamp(std::floor(box.lo.x / size), 0.0, double(grid.columns())));
+                const int c1 = static_cast<int>(std::clamp(std::floor(box.hi.x / size), -1.0, double(grid.columns() - 1)));
+                const int r0 = static_cast<int>(std::clamp(std::floor(box.lo.y / size), 0.0, double(grid.rows())));
+                const int r1 = static_cast<int>(std::clamp(std::floor(box.hi.y / size), -1.0, double(grid.rows() - 1)));
                 for (int r = r0; r <= r1; ++r)
                     for (int c = c0; c <= c1; ++c) f(static_cast<std::size_t>(r * grid.columns() + c), FragmentRef{i, layer});
             }

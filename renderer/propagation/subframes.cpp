@@ -227,9 +227,42 @@ double ShutterPathSampler::pathLength(const MeshPoint& point) const {
     return length;
 }
 
+// On straight paths every point of the fragment at any time lies in the convex hull of its vertices'
+// camera-relative positions at open and close (each moves linearly; the camera does not turn). The part
+// of that hull at or beyond the near depth, all that a re-clip can draw (it cuts at a depth no nearer),
+// is a polytope whose corners are those positions beyond it and the points where the segments between
+// two of them cross it; a perspective projection maps it onto the hull of its corners' images.
+RasterBounds ShutterPathSampler::crossingBounds(std::span<const MeshPoint> vertices) const {
+    const MotionSnapshot& open = nodes_.front().snapshot;
+    const MotionSnapshot& close = nodes_.back().snapshot;
+    const CameraFrame& camera = open.camera;
+    const double near = open.near_depth;
+    std::vector<glm::dvec3>& d = threadScratch<std::vector<glm::dvec3>>();
+    d.clear();
+    for (const MeshPoint& v : vertices) {
+        d.push_back(project(open, *scene_, v).world - open.camera.position);
+        d.push_back(project(close, *scene_, v).world - close.camera.position);
+    }
+    RasterBounds box;
+    const auto add = [&](const glm::dvec3& p, double depth) {
+        box.expand(open.projection.toRaster(glm::dvec2(glm::dot(camera.e1, p), glm::dot(camera.e2, p)) / depth));
+    };
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        const double zi = glm::dot(camera.e3, d[i]);
+        if (zi >= near) add(d[i], zi);
+        for (std::size_t j = i + 1; j < d.size(); ++j) {
+            const double zj = glm::dot(camera.e3, d[j]);
+            if ((zi < near) != (zj < near)) add(d[i] + (near - zi) / (zj - zi) * (d[j] - d[i]), near);
+        }
+    }
+    return box;
+}
+
 FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) const {
     FragmentMotion out;
-    if (!vertices.empty() && std::all_of(vertices.begin(), vertices.end(), [&](const MeshPoint& v) { return straight(v.object); })) {
+    const bool straight_paths =
+        !vertices.empty() && std::all_of(vertices.begin(), vertices.end(), [&](const MeshPoint& v) { return straight(v.object); });
+    if (straight_paths) {
         if (measureStraight(vertices, out)) return out;
         out = FragmentMotion{};
     }
@@ -302,7 +335,7 @@ FragmentMotion ShutterPathSampler::measure(std::span<const MeshPoint> vertices) 
         sourceMap(vertices[0], out, corners);
     }
     if (out.crosses_near) {
-        out.swept = RasterBounds::everything();
+        out.swept = straight_paths ? crossingBounds(vertices) : RasterBounds::everything();
     } else {
         out.swept.pad(film_speed * max_gap_);
         out.min_depth -= max_depth_rate * max_gap_;

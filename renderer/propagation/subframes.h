@@ -24,7 +24,9 @@ struct FragmentMotion {
     // Peak raster speed of any vertex times the shutter length: equal subframes of this many keep every
     // vertex within a pixel per step. It is never below max_path_pixels and equals it for uniform speed.
     double max_sweep_pixels = 0.0;
-    bool crosses_near = false;      // a vertex reaches the camera plane: swept is the whole plane
+    // A vertex reaches the camera plane: its image speed is unbounded, and swept is the whole plane, or
+    // for straight paths the image of what of its swept hull is in front (ShutterPathSampler::measure).
+    bool crosses_near = false;
     glm::dvec2 start{0.0}, end{0.0};  // mean raster position of the vertices at shutter open and close
     // Largest distance of a sampled vertex position from the path a sweep with one interval follows
     // (SweepPath::through its positions and depths at open, mid-shutter and close): a third-order error,
@@ -117,6 +119,8 @@ private:
     // measure for vertices on straight paths (straight()); false when a vertex is behind the camera at
     // an end, which the sampled measure handles.
     bool measureStraight(std::span<const MeshPoint> vertices, FragmentMotion& out) const;
+    // Where a fragment on straight paths that reaches the camera plane can be on the image.
+    RasterBounds crossingBounds(std::span<const MeshPoint> vertices) const;
     // The camera-relative position and rate of point's triangle's corners at every node, then at
     // mid-shutter, from this thread's cache; none when the thread last measured another triangle (or
     // for another sampler), which the next call with this triangle then fills.

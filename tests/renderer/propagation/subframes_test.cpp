@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "renderer/visibility/frame_geometry.h"
 #include "support/motion_scenes.h"
 
 namespace clipblur {
@@ -634,9 +635,50 @@ TEST(Subframes, CrossingTheCameraPlaneIsFlagged) {
     const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
     const FragmentMotion fm = sampler.measure(verts);
     EXPECT_TRUE(fm.crosses_near);
-    EXPECT_TRUE(fm.swept.overlaps(RasterBounds{{1e9, 1e9}, {1e9, 1e9}}));
+    // It passes through the eye: where it crosses the near depth (1e-6) its corners project some
+    // k / 1e-6 = 4.9e8 px from the centre on every side.
+    EXPECT_TRUE(fm.swept.contains({-1e8, -1e8}) && fm.swept.contains({1e8, 1e8}));
     const SubframePlan plan = planSubframes(std::span(&fm, 1), RasterBounds{{0, 0}, {32, 32}}, 256);
     EXPECT_EQ(plan.near_crossings, 1);
+}
+
+// A face of a post beside the camera's path (configs/bench/near_plane.yaml): the camera dollies 5 units
+// past it, so the face goes from 1.8-2.2 units in front to behind the camera. Every point of it it could
+// draw (cut at the re-clip's near depth, at 2001 times) lies in its swept box, and the box stays on the
+// right of the image: its inner edge is the nearest corner's image at open (|x| / z is least there over
+// the swept hull: 1.0 / 1.8), so the tiles left of it never re-clip the face.
+TEST(Subframes, CrossingOnAStraightPathIsBoundedByWhatIsInFront) {
+    Scene scene = testing::stillCameraScene();
+    scene.camera.keys.push_back({1.0, {0, 0, 5}, {0, 0, 1}, {0, 1, 0}});
+    scene.objects.push_back(testing::triangleObject({-1.0, -1.5, 1.8}, {-1.4, -1.5, 2.2}, {-1.2, 1.5, 2.0}));
+    const Projection proj = projectionOf(scene);
+    const ShutterPathSampler sampler(scene, proj, 0.0, 1.0);
+    const MeshPoint verts[3] = {{0, 0, {1, 0, 0}}, {0, 0, {0, 1, 0}}, {0, 0, {0, 0, 1}}};
+    const FragmentMotion fm = sampler.measure(verts);
+    ASSERT_TRUE(fm.crosses_near);
+    EXPECT_NEAR(fm.swept.lo.x, project(MotionSnapshot(scene, proj, 0.0), scene, verts[0]).raster.x, 1e-9);
+    for (int i = 0; i <= 2000; ++i) {
+        const MotionSnapshot at(scene, proj, i / 2000.0);
+        std::vector<glm::dvec3> polygon, cut;
+        for (const MeshPoint& v : verts) polygon.push_back(project(at, scene, v).world - at.camera.position);
+        const auto depth = [&](const glm::dvec3& d) { return glm::dot(at.camera.e3, d); };
+        for (std::size_t k = 0; k < polygon.size(); ++k) {  // Sutherland-Hodgman against depth >= kNearDepth
+            const glm::dvec3 &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
+            if (depth(p) >= kNearDepth) cut.push_back(p);
+            if ((depth(p) < kNearDepth) != (depth(q) < kNearDepth))
+                cut.push_back(p + (kNearDepth - depth(p)) / (depth(q) - depth(p)) * (q - p));
+        }
+        for (const glm::dvec3& d : cut) {
+            const glm::dvec2 r = proj.toRaster(glm::dvec2(glm::dot(at.camera.e1, d), glm::dot(at.camera.e2, d)) / depth(d));
+            RasterBounds box = fm.swept;
+            box.pad(1e-9 * (1.0 + glm::length(r)));  // rounding of coordinates up to 1e7 px
+            EXPECT_TRUE(box.contains(r)) << "t " << at.time << " at " << r.x << ", " << r.y;
+        }
+    }
+    const SubframePlan left = planSubframes(std::span(&fm, 1), RasterBounds{{0, 0}, {320, 360}}, 256);
+    EXPECT_EQ(left.fragments, 0);
+    const SubframePlan right = planSubframes(std::span(&fm, 1), RasterBounds{{608, 160}, {640, 192}}, 256);
+    EXPECT_EQ(right.near_crossings, 1);
 }
 
 }  // namespace
